@@ -1,0 +1,83 @@
+// Engine: the whole LOD pipeline for one heightfield, one frame at a time.
+//
+//   Engine e;
+//   std::string err = e.setHeightfield(hf, 64);   // quadtree + error table (input change only)
+//   const FrameStats& s = e.update(view, 1.0);     // cull, select, tessellate (every frame)
+//   draw(e.indices());                             // only if !s.reused
+#pragma once
+
+#include "ErrorTable.h"
+#include "Heightfield.h"
+#include "Quadtree.h"
+#include "SelectLevels.h"
+#include "Tessellate.h"
+#include "View.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gmm
+{
+
+struct FrameStats
+{
+  int visibleBlocks = 0;
+  int culledBlocks = 0;
+  std::size_t triangles = 0;
+  double maxScreenError = 0.0;   // certified bound, pixels (view mode)
+  double maxGeometricError = 0.0; // certified bound, metres
+  bool reused = false;           // indices identical to the previous frame's, not regenerated
+  int blocksRetessellated = 0;   // blocks whose triangles were regenerated this frame
+};
+
+class Engine
+{
+public:
+  // Validates `hf`, builds the quadtree (leaves at most maxBlockQuads quads a side, >= 2) and
+  // the error table. Returns "" on success or the reason it failed (the engine is then empty).
+  std::string setHeightfield(Heightfield hf, int maxBlockQuads = 64, int threads = 0);
+
+  // One frame for a camera. Returns the frame's statistics; on a bad view or tau, sets
+  // lastError() and returns stats with zero triangles.
+  const FrameStats& update(const View& view, double tau);
+
+  // View-independent mode: every block at the coarsest level within maxError metres.
+  const FrameStats& updateForError(double maxError);
+
+  // Tessellates an explicit level assignment (-1 = not drawn); for tests and tools.
+  const FrameStats& updateWithLevels(const std::vector<int8_t>& levels);
+
+  void setErrorMetric(ErrorMetric m) { metric_ = m; }
+  ErrorMetric errorMetric() const { return metric_; }
+
+  const std::vector<uint32_t>& indices() const { return indices_; }
+  const std::vector<int8_t>& levels() const { return levels_; }
+  const FrameStats& stats() const { return stats_; }
+  const std::string& lastError() const { return lastError_; }
+  const Heightfield& heightfield() const { return hf_; }
+  const Quadtree& quadtree() const { return qt_; }
+  const ErrorTable& errorTable() const { return table_; }
+  bool empty() const { return qt_.blockCount() == 0; }
+
+private:
+  const FrameStats& finishFrame(const std::vector<double>* factor);
+
+  Heightfield hf_;
+  Quadtree qt_;
+  ErrorTable table_;
+  ErrorMetric metric_ = ErrorMetric::Certified;
+
+  std::vector<uint8_t> visible_;
+  std::vector<double> factor_;
+  std::vector<int8_t> levels_;
+  // Per-block cache: the configuration each block was last tessellated with (level -1 =
+  // not drawn) and its triangles, so a frame regenerates only blocks whose config changed.
+  std::vector<BlockConfig> drawnConfig_;
+  std::vector<std::vector<uint32_t>> blockTriangles_;
+  std::vector<uint32_t> indices_;
+  FrameStats stats_;
+  std::string lastError_;
+};
+
+} // namespace gmm

@@ -1,0 +1,48 @@
+// Exact geometric error of every block at every level, and of every side strip for every
+// coarser edge level. Computed by rasterising the very triangles Tessellate emits over the
+// full-resolution samples: the error of a sample is its vertical distance to the drawn
+// triangle above/below it, and a table entry is the maximum over the samples it covers.
+// A triangle that would cover or touch nodata at anything but full resolution has infinite
+// error, so blocks with holes stay at level 0 around them.
+#pragma once
+
+#include "Heightfield.h"
+#include "Quadtree.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace gmm
+{
+
+struct ErrorTable
+{
+  int levels = 0; // entries per block (top level of the largest block + 1)
+  // ownError[b * levels + m]: error of block b at level m with its own edges; made monotone
+  // (non-decreasing) in m; +inf for levels that are invalid for the block.
+  std::vector<float> ownError;
+  // Exact (not monotone) error of the same configuration, for reporting certified bounds.
+  std::vector<float> ownErrorExact;
+  // stripError[((b * 4 + side) * pairs) + pairIndex(m, n)] for ring levels m < n: error of
+  // the side strip of block b at level m when the edge is sampled at level n. Made monotone
+  // in n. Zero where unused.
+  std::vector<float> stripError;
+  int pairs = 0; // levels * (levels - 1) / 2
+
+  static int pairIndex(int m, int n) { return n * (n - 1) / 2 + m; } // m < n
+  float own(int block, int m) const { return ownError[static_cast<std::size_t>(block) * levels + m]; }
+  float ownExact(int block, int m) const
+  {
+    return ownErrorExact[static_cast<std::size_t>(block) * levels + m];
+  }
+  float strip(int block, int side, int m, int n) const;
+};
+
+// Builds the table with up to `threads` worker threads (0 = hardware concurrency).
+ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads = 0);
+
+// Maximum vertical error of the samples covered by a list of triangles (grid indices),
+// the building block of the table; exposed for tests.
+float trianglesError(const Heightfield& hf, const std::vector<uint32_t>& tris, bool strictNodata);
+
+} // namespace gmm

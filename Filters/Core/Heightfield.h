@@ -1,0 +1,40 @@
+// Heightfield: a regular grid of heights, the engine's only input data.
+//
+// Sample (i, j) sits at world (x0 + i*dx, y0 + j*dy) with height z[j*nx + i]. Any size
+// nx x ny >= 2 x 2 is accepted (no 2^k+1 rule). Nodata is NaN; +-Inf is treated as nodata
+// too (see makeHeightfield). Negative spacing flips an axis; the engine keeps triangles
+// counter-clockwise seen from +z in world coordinates either way.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gmm
+{
+
+struct Heightfield
+{
+  int nx = 0;
+  int ny = 0;
+  double x0 = 0.0, y0 = 0.0; // world position of sample (0, 0)
+  double dx = 1.0, dy = 1.0; // spacing; negative flips the axis
+  std::vector<float> z;      // nx*ny heights, row-major (i fastest); NaN = nodata
+
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * nx + i; }
+  float height(int i, int j) const { return z[index(i, j)]; }
+  double worldX(double i) const { return x0 + i * dx; }
+  double worldY(double j) const { return y0 + j * dy; }
+  // True when (i, j) -> (x, y) mirrors orientation, so index winding must be flipped.
+  bool mirrored() const { return (dx < 0) != (dy < 0); }
+};
+
+// Checks a heightfield for use by the engine. Returns an empty string when it is usable,
+// otherwise a sentence that says what is wrong (size below 2 x 2, height count that does not
+// match the size, zero or non-finite spacing or origin, more samples than 2^32 - 1 indices).
+std::string validateHeightfield(const Heightfield& hf);
+
+// Replaces +-Inf by NaN (nodata) in place and returns how many samples were replaced.
+std::size_t infinitiesToNodata(Heightfield& hf);
+
+} // namespace gmm

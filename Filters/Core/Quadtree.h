@@ -1,0 +1,55 @@
+// Quadtree with variable-size leaves over a heightfield (Poyart et al., 3.1).
+//
+// Width and height are split in two (rounding down) independently until a side is at most
+// `maxBlockQuads` quads. Because a dimension is split by a rule that depends on that
+// dimension alone, the leaves form a grid of row bands x column bands: every block has
+// exactly one neighbour per side with the same shared edge, which keeps stitching exact.
+// Leaves share their border samples (block (c, r) covers samples colStart[c]..colStart[c+1]).
+#pragma once
+
+#include "Heightfield.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace gmm
+{
+
+struct Box
+{
+  glm::dvec3 lo{ 0.0 };
+  glm::dvec3 hi{ 0.0 };
+};
+
+struct QuadtreeNode
+{
+  Box box;               // world-space bounds of every valid sample below (z from heights)
+  int32_t firstChild = -1; // index of first child in Quadtree::nodes; children are contiguous
+  int32_t childCount = 0;  // 0 for a leaf
+  int32_t block = -1;      // leaf only: block index (row * blockCols + col)
+};
+
+struct Quadtree
+{
+  std::vector<int> colStart; // blockCols + 1 sample columns: block c spans [colStart[c], colStart[c+1]]
+  std::vector<int> rowStart; // blockRows + 1 sample rows
+  int blockCols = 0;
+  int blockRows = 0;
+  std::vector<QuadtreeNode> nodes; // nodes[0] is the root
+  std::vector<Box> blockBox;       // per block, world bounds (z over valid samples)
+  std::vector<uint8_t> blockHasNodata; // per block: any NaN sample inside (borders included)
+
+  int blockCount() const { return blockCols * blockRows; }
+  int blockIndex(int col, int row) const { return row * blockCols + col; }
+};
+
+// Splits [0, quads] into bands of at most maxQuads quads by recursive halving (rounding
+// down). Returns band start positions plus the end (so size = bands + 1).
+std::vector<int> splitBands(int quads, int maxQuads);
+
+// Builds the quadtree. maxBlockQuads >= 2. The heightfield must be valid.
+Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads);
+
+} // namespace gmm

@@ -1,0 +1,51 @@
+// Culling and level selection for one view.
+#pragma once
+
+#include "ErrorTable.h"
+#include "Heightfield.h"
+#include "Quadtree.h"
+#include "View.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace gmm
+{
+
+enum class ErrorMetric
+{
+  // Certified: for a vertical error delta inside a block's box, the projected length is at
+  // most f * delta * maxDist / minDepth^2 pixels (f = pixels per unit at depth 1), where
+  // maxDist / minDepth are the largest eye distance and smallest view depth over the box.
+  // This also covers the off-axis magnification that delta * f / distance misses.
+  Certified,
+  // de Boer's approximation: f * delta / (distance from eye to box centre). Cheaper and not
+  // a bound; offered for comparison.
+  CenterDistance
+};
+
+// Marks blocks whose box intersects the frustum (1) or not (0), walking the quadtree with
+// early full-inside accept. Returns the number of visible blocks.
+int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible);
+
+// Pixels per metre of vertical error for each visible block (0 for culled blocks).
+void projectionFactors(const Quadtree& qt, const View& view, const std::vector<uint8_t>& visible,
+  ErrorMetric metric, std::vector<double>& factor);
+
+// Chooses the coarsest level per visible block whose projected error is <= tau pixels, then
+// refines neighbours until every side strip joined to a coarser edge is within tau too.
+// levels[b] = -1 for culled blocks. tau must be finite and >= 0.
+void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& factor,
+  double tau, std::vector<int8_t>& levels);
+
+// View-independent selection: every block takes the coarsest level whose error (including
+// strips) is <= maxError metres.
+void selectLevelsForError(
+  const Quadtree& qt, const ErrorTable& table, double maxError, std::vector<int8_t>& levels);
+
+// Certified error of a drawn block (metres): its own error at its level, and every strip
+// joined to a coarser edge.
+double blockCertifiedError(
+  const Quadtree& qt, const ErrorTable& table, const std::vector<int8_t>& levels, int block);
+
+} // namespace gmm

@@ -1,0 +1,64 @@
+// Tessellation: one block at one level, stitched to its neighbours, as triangle indices
+// into the full-resolution vertex array (vertex = j*nx + i; nothing is duplicated).
+//
+// A ring-shaped block (see Levels.h) is drawn as an inner grid over its inner samples
+// (drawArea, one drawHStrip per row band) plus four side strips between the block's edge
+// and its inner ring. Along each edge the samples of the coarser of the two blocks are used
+// (the edge level); each side strip joins the edge samples to the inner ring by fans
+// (drawFan, any level to any other, difference > 1 included). Both blocks of a shared edge
+// derive its samples from the edge level alone, so they agree and no crack or T-junction
+// can appear. Triangles are counter-clockwise seen from +z in world coordinates.
+// Triangles touching a nodata (NaN) sample are not emitted.
+#pragma once
+
+#include "Heightfield.h"
+#include "Quadtree.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace gmm
+{
+
+enum Side
+{
+  South = 0, // j = first row of the block (low y when dy > 0)
+  East = 1,  // i = last column
+  North = 2, // j = last row
+  West = 3   // i = first column
+};
+
+// Part of a block to emit: the whole block, its inner grid only, or one side strip only.
+// The error table rasterises parts separately; drawing uses Whole.
+enum class BlockPart
+{
+  Whole,
+  Inner,
+  StripSouth,
+  StripEast,
+  StripNorth,
+  StripWest
+};
+
+struct BlockConfig
+{
+  int level = 0;                        // the block's own level (valid for the block)
+  std::array<int, 4> edgeLevel{ 0, 0, 0, 0 }; // per side, >= level (coarser neighbour) or == level
+};
+
+// Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a
+// vertex is NaN if `keepNodata` is true (used by the error table to see holes).
+void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, std::vector<uint32_t>& out, bool keepNodata = false);
+
+// Edge level of each side of `block` given every block's level (-1 = not drawn): the
+// coarser of the two blocks when the neighbour is drawn, else the block's own level.
+BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
+
+// Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in
+// block order. `out` is cleared first.
+void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  std::vector<uint32_t>& out);
+
+} // namespace gmm

@@ -1,0 +1,53 @@
+// View: what level selection and culling need to know about a camera and viewport.
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+#include <string>
+
+namespace gmm
+{
+
+struct View
+{
+  glm::dvec3 eye{ 0.0 };
+  glm::dvec3 forward{ 0.0, 1.0, 0.0 }; // view direction (need not be unit length)
+  glm::dvec3 up{ 0.0, 0.0, 1.0 };      // view-up (projected orthogonal to forward)
+  double fovYDegrees = 30.0;            // vertical field of view, perspective only
+  bool parallel = false;                // orthographic projection
+  double parallelScale = 1.0;           // half the view height in world units (orthographic)
+  double nearDistance = 0.1;            // clipping range along forward, world units
+  double farDistance = 1e6;
+  int viewportWidth = 1280;             // pixels
+  int viewportHeight = 720;
+};
+
+// Frustum as 6 planes (a, b, c, d) with a*x + b*y + c*z + d >= 0 inside; order: left, right,
+// bottom, top, near, far. Normals are unit length.
+using Frustum = std::array<glm::dvec4, 6>;
+
+// Checks a view. Empty string when usable, else what is wrong (non-finite values, zero
+// forward, up parallel to forward, field of view outside (0, 180), near <= 0 or far <= near,
+// viewport below 1 x 1, parallel scale <= 0).
+std::string validateView(const View& view);
+
+Frustum frustumOf(const View& view);
+
+// Orthonormal camera frame derived from the view (right, true up, unit forward).
+struct CameraFrame
+{
+  glm::dvec3 right, up, forward;
+};
+CameraFrame cameraFrameOf(const View& view);
+
+// Pixels per world unit at depth 1 (perspective) or everywhere (orthographic).
+double pixelsPerUnit(const View& view);
+
+// Projects a world point to pixel coordinates (x right, y up, origin at the viewport's
+// lower-left corner). Returns false when the point is not in front of the near plane.
+// Used by tests and benchmarks to measure error independently of level selection.
+bool projectToPixels(const View& view, const glm::dvec3& p, double& px, double& py);
+
+} // namespace gmm
