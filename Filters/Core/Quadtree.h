@@ -9,6 +9,7 @@
 
 #include "Heightfield.h"
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>

@@ -1,0 +1,178 @@
+#include "Engine.h"
+
+#include "Levels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace gmm
+{
+
+namespace
+{
+bool sameConfig(const BlockConfig& a, const BlockConfig& b)
+{
+  return a.level == b.level && a.edgeLevel == b.edgeLevel;
+}
+
+BlockConfig notDrawn()
+{
+  BlockConfig c;
+  c.level = -1;
+  c.edgeLevel = { -1, -1, -1, -1 };
+  return c;
+}
+} // namespace
+
+std::string Engine::setHeightfield(Heightfield hf, int maxBlockQuads, int threads)
+{
+  hf_ = Heightfield();
+  qt_ = Quadtree();
+  table_ = ErrorTable();
+  indices_.clear();
+  levels_.clear();
+  drawnConfig_.clear();
+  blockTriangles_.clear();
+  stats_ = FrameStats();
+  lastError_ = validateHeightfield(hf);
+  if (lastError_.empty() && maxBlockQuads < 4)
+  {
+    // Below 4, halving can leave one-quad-wide blocks between neighbours, which the
+    // thin-block shape does not stitch.
+    std::ostringstream why;
+    why << "block size " << maxBlockQuads << " is below the minimum of 4 quads";
+    lastError_ = why.str();
+  }
+  if (!lastError_.empty())
+  {
+    return lastError_;
+  }
+  infinitiesToNodata(hf);
+  hf_ = std::move(hf);
+  qt_ = buildQuadtree(hf_, maxBlockQuads);
+  table_ = buildErrorTable(hf_, qt_, threads);
+  drawnConfig_.assign(qt_.blockCount(), notDrawn());
+  blockTriangles_.assign(qt_.blockCount(), {});
+  return lastError_;
+}
+
+const FrameStats& Engine::update(const View& view, double tau)
+{
+  lastError_ = empty() ? "no heightfield" : validateView(view);
+  if (lastError_.empty() && !(std::isfinite(tau) && tau >= 0.0))
+  {
+    std::ostringstream why;
+    why << "pixel error " << tau << " must be finite and >= 0";
+    lastError_ = why.str();
+  }
+  if (!lastError_.empty())
+  {
+    levels_.assign(qt_.blockCount(), -1);
+    return finishFrame(nullptr);
+  }
+  cullBlocks(qt_, frustumOf(view), visible_);
+  projectionFactors(qt_, view, visible_, metric_, factor_);
+  selectLevels(qt_, table_, factor_, tau, levels_);
+  return finishFrame(&factor_);
+}
+
+const FrameStats& Engine::updateForError(double maxError)
+{
+  lastError_ = empty() ? "no heightfield" : std::string();
+  if (lastError_.empty() && !(std::isfinite(maxError) && maxError >= 0.0))
+  {
+    std::ostringstream why;
+    why << "maximum geometric error " << maxError << " must be finite and >= 0";
+    lastError_ = why.str();
+  }
+  if (!lastError_.empty())
+  {
+    levels_.assign(qt_.blockCount(), -1);
+    return finishFrame(nullptr);
+  }
+  selectLevelsForError(qt_, table_, maxError, levels_);
+  return finishFrame(nullptr);
+}
+
+const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
+{
+  lastError_.clear();
+  levels_.assign(qt_.blockCount(), -1);
+  if (levels.size() != levels_.size())
+  {
+    lastError_ = "level list does not match the number of blocks";
+    return finishFrame(nullptr);
+  }
+  for (int b = 0; b < qt_.blockCount(); ++b)
+  {
+    const int m = levels[b];
+    const int c = b % qt_.blockCols, r = b / qt_.blockCols;
+    const int w = qt_.colStart[c + 1] - qt_.colStart[c], h = qt_.rowStart[r + 1] - qt_.rowStart[r];
+    if (m >= 0 && (m > topLevel(w, h) || blockShape(w, h, m) == BlockShape::Invalid))
+    {
+      lastError_ = "level list holds a level that is not valid for its block";
+      levels_.assign(qt_.blockCount(), -1);
+      return finishFrame(nullptr);
+    }
+  }
+  levels_ = levels;
+  return finishFrame(nullptr);
+}
+
+const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
+{
+  FrameStats s;
+  bool changed = false;
+  for (int b = 0; b < qt_.blockCount(); ++b)
+  {
+    const BlockConfig cfg = levels_[b] >= 0 ? blockConfigOf(qt_, levels_, b) : notDrawn();
+    if (levels_[b] >= 0)
+    {
+      ++s.visibleBlocks;
+      const double e = blockCertifiedError(qt_, table_, levels_, b);
+      s.maxGeometricError = std::max(s.maxGeometricError, e);
+      if (factor)
+      {
+        s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);
+      }
+    }
+    else
+    {
+      ++s.culledBlocks;
+    }
+    if (sameConfig(cfg, drawnConfig_[b]))
+    {
+      continue;
+    }
+    changed = true;
+    drawnConfig_[b] = cfg;
+    std::vector<uint32_t>& tris = blockTriangles_[b];
+    tris.clear();
+    if (cfg.level >= 0)
+    {
+      emitBlock(hf_, qt_, b, cfg, BlockPart::Whole, tris);
+      ++s.blocksRetessellated;
+    }
+  }
+  if (changed)
+  {
+    std::size_t total = 0;
+    for (const auto& tris : blockTriangles_)
+    {
+      total += tris.size();
+    }
+    indices_.clear();
+    indices_.reserve(total);
+    for (const auto& tris : blockTriangles_)
+    {
+      indices_.insert(indices_.end(), tris.begin(), tris.end());
+    }
+  }
+  s.reused = !changed;
+  s.triangles = indices_.size() / 3;
+  stats_ = s;
+  return stats_;
+}
+
+} // namespace gmm

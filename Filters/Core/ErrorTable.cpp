@@ -1,0 +1,213 @@
+#include "ErrorTable.h"
+
+#include "Levels.h"
+#include "Tessellate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+namespace gmm
+{
+
+namespace
+{
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+int64_t edgeFn(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64_t py)
+{
+  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+// Error of one triangle over the samples it covers (edges included), in grid space.
+// strict: a nodata vertex or covered nodata sample is an infinite error (the triangle would
+// draw over a hole); otherwise a nodata-touching triangle is an accepted full-res hole.
+float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, bool strict)
+{
+  const int64_t nx = hf.nx;
+  const int64_t ax = a % nx, ay = a / nx, bx = b % nx, by = b / nx, cx = c % nx, cy = c / nx;
+  const double za = hf.z[a], zb = hf.z[b], zc = hf.z[c];
+  if (std::isnan(za) || std::isnan(zb) || std::isnan(zc))
+  {
+    return strict ? kInf : 0.0f;
+  }
+  int64_t area = edgeFn(ax, ay, bx, by, cx, cy);
+  const double sign = area < 0 ? -1.0 : 1.0;
+  if (area == 0)
+  {
+    return 0.0f; // no sample strictly covered; cannot happen for emitted triangles
+  }
+  const double invArea = 1.0 / static_cast<double>(area);
+  const int64_t i0 = std::min({ ax, bx, cx }), i1 = std::max({ ax, bx, cx });
+  const int64_t j0 = std::min({ ay, by, cy }), j1 = std::max({ ay, by, cy });
+  float worst = 0.0f;
+  for (int64_t j = j0; j <= j1; ++j)
+  {
+    const float* row = hf.z.data() + j * nx;
+    for (int64_t i = i0; i <= i1; ++i)
+    {
+      const int64_t w0 = edgeFn(bx, by, cx, cy, i, j);
+      const int64_t w1 = edgeFn(cx, cy, ax, ay, i, j);
+      const int64_t w2 = edgeFn(ax, ay, bx, by, i, j);
+      if (sign * w0 < 0 || sign * w1 < 0 || sign * w2 < 0)
+      {
+        continue;
+      }
+      const float h = row[i];
+      if (std::isnan(h))
+      {
+        if (strict)
+        {
+          return kInf;
+        }
+        continue;
+      }
+      const double surface = (w0 * za + w1 * zb + w2 * zc) * invArea;
+      worst = std::max(worst, static_cast<float>(std::abs(h - surface)));
+    }
+  }
+  return worst;
+}
+
+struct BlockRect
+{
+  int w, h;
+};
+
+BlockRect blockSize(const Quadtree& qt, int block)
+{
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  return { qt.colStart[c + 1] - qt.colStart[c], qt.rowStart[r + 1] - qt.rowStart[r] };
+}
+
+float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
+  BlockPart part, bool strict, std::vector<uint32_t>& scratch)
+{
+  scratch.clear();
+  emitBlock(hf, qt, block, cfg, part, scratch, true);
+  return trianglesError(hf, scratch, strict);
+}
+
+void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable& t,
+  std::vector<uint32_t>& scratch)
+{
+  const BlockRect size = blockSize(qt, block);
+  const int top = topLevel(size.w, size.h);
+  float* own = &t.ownError[static_cast<std::size_t>(block) * t.levels];
+  float* exact = &t.ownErrorExact[static_cast<std::size_t>(block) * t.levels];
+  float* strips = &t.stripError[static_cast<std::size_t>(block) * 4 * t.pairs];
+  const bool lockFullRes = qt.blockHasNodata[block] != 0;
+  float running = 0.0f;
+  for (int m = 0; m < t.levels; ++m)
+  {
+    const BlockShape shape = blockShape(size.w, size.h, m);
+    own[m] = exact[m] = kInf;
+    if (m > top || shape == BlockShape::Invalid || (lockFullRes && m > 0))
+    {
+      continue; // never selected
+    }
+    // Full resolution with its own edges draws every sample: holes there are the data's.
+    const bool strict = m > 0;
+    BlockConfig cfg;
+    cfg.level = m;
+    cfg.edgeLevel = { m, m, m, m };
+    float e = 0.0f;
+    if (shape != BlockShape::Ring)
+    {
+      e = partError(hf, qt, block, cfg, BlockPart::Whole, strict, scratch);
+    }
+    else
+    {
+      e = partError(hf, qt, block, cfg, BlockPart::Inner, strict, scratch);
+      for (int side = 0; side < 4; ++side)
+      {
+        const BlockPart part = static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + side);
+        float previous = partError(hf, qt, block, cfg, part, strict, scratch);
+        e = std::max(e, previous);
+        // Coarser edges: from the first coarser level until the edge is just its corners;
+        // beyond that the strip no longer changes.
+        const int edgeLength = (side == South || side == North) ? size.w : size.h;
+        for (int n = m + 1; n < t.levels; ++n)
+        {
+          const bool changes = ((1LL << (n - 1)) < edgeLength);
+          float s = previous;
+          if (changes)
+          {
+            BlockConfig coarse = cfg;
+            coarse.edgeLevel[side] = n;
+            s = std::max(previous, partError(hf, qt, block, coarse, part, true, scratch));
+          }
+          strips[side * t.pairs + ErrorTable::pairIndex(m, n)] = s;
+          previous = s;
+        }
+      }
+    }
+    exact[m] = e;
+    running = std::max(running, e);
+    own[m] = running; // monotone over the valid levels
+  }
+}
+
+} // namespace
+
+float ErrorTable::strip(int block, int side, int m, int n) const
+{
+  return stripError[(static_cast<std::size_t>(block) * 4 + side) * pairs + pairIndex(m, n)];
+}
+
+float trianglesError(const Heightfield& hf, const std::vector<uint32_t>& tris, bool strictNodata)
+{
+  float worst = 0.0f;
+  for (std::size_t k = 0; k + 2 < tris.size(); k += 3)
+  {
+    worst = std::max(worst, triangleError(hf, tris[k], tris[k + 1], tris[k + 2], strictNodata));
+    if (worst == kInf)
+    {
+      break;
+    }
+  }
+  return worst;
+}
+
+ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads)
+{
+  ErrorTable t;
+  int maxTop = 0;
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    const BlockRect s = blockSize(qt, b);
+    maxTop = std::max(maxTop, topLevel(s.w, s.h));
+  }
+  t.levels = maxTop + 1;
+  t.pairs = t.levels * (t.levels - 1) / 2;
+  const std::size_t blocks = static_cast<std::size_t>(qt.blockCount());
+  t.ownError.assign(blocks * t.levels, kInf);
+  t.ownErrorExact.assign(blocks * t.levels, kInf);
+  t.stripError.assign(blocks * 4 * std::max(1, t.pairs), 0.0f);
+
+  unsigned workers = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(blocks)));
+  // Blocks are independent: interleave them over the workers so that expensive regions of
+  // the DEM spread evenly.
+  auto work = [&](unsigned first) {
+    std::vector<uint32_t> scratch;
+    for (std::size_t b = first; b < blocks; b += workers)
+    {
+      fillBlock(hf, qt, static_cast<int>(b), t, scratch);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w)
+  {
+    pool.emplace_back(work, w);
+  }
+  work(0);
+  for (std::thread& th : pool)
+  {
+    th.join();
+  }
+  return t;
+}
+
+} // namespace gmm

@@ -1,0 +1,151 @@
+#include "Quadtree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gmm
+{
+
+namespace
+{
+
+void splitInto(int begin, int end, int maxQuads, std::vector<int>& starts)
+{
+  const int quads = end - begin;
+  if (quads <= maxQuads)
+  {
+    starts.push_back(begin);
+    return;
+  }
+  const int mid = begin + quads / 2; // halve, rounding down (Poyart 3.1)
+  splitInto(begin, mid, maxQuads, starts);
+  splitInto(mid, end, maxQuads, starts);
+}
+
+Box emptyBox()
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  return Box{ glm::dvec3(inf), glm::dvec3(-inf) };
+}
+
+void grow(Box& b, const Box& o)
+{
+  b.lo = glm::min(b.lo, o.lo);
+  b.hi = glm::max(b.hi, o.hi);
+}
+
+// Leaf box over samples [i0, i1] x [j0, j1]; z from valid heights only. A block whose
+// samples are all nodata gets an empty z range at 0 (it draws nothing; culling keeps it cheap).
+Box sampleBox(const Heightfield& hf, int i0, int i1, int j0, int j1, bool& hasNodata)
+{
+  float zmin = std::numeric_limits<float>::infinity();
+  float zmax = -zmin;
+  hasNodata = false;
+  for (int j = j0; j <= j1; ++j)
+  {
+    const float* row = hf.z.data() + hf.index(0, j);
+    for (int i = i0; i <= i1; ++i)
+    {
+      const float h = row[i];
+      if (std::isnan(h))
+      {
+        hasNodata = true;
+        continue;
+      }
+      zmin = std::min(zmin, h);
+      zmax = std::max(zmax, h);
+    }
+  }
+  if (zmin > zmax)
+  {
+    zmin = zmax = 0.0f;
+  }
+  const double xa = hf.worldX(i0), xb = hf.worldX(i1);
+  const double ya = hf.worldY(j0), yb = hf.worldY(j1);
+  return Box{ glm::dvec3(std::min(xa, xb), std::min(ya, yb), zmin),
+    glm::dvec3(std::max(xa, xb), std::max(ya, yb), zmax) };
+}
+
+// Builds the node over block columns [c0, c1) and rows [r0, r1) into qt.nodes[nodeIndex].
+void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
+{
+  if (c1 - c0 == 1 && r1 - r0 == 1)
+  {
+    const int b = qt.blockIndex(c0, r0);
+    qt.nodes[nodeIndex].block = b;
+    qt.nodes[nodeIndex].box = qt.blockBox[b];
+    return;
+  }
+  // Split the block range the same way the samples were split: children mirror the
+  // recursive halving, so each child covers a contiguous range of bands.
+  const int cm = c1 - c0 > 1 ? c0 + (c1 - c0) / 2 : c1;
+  const int rm = r1 - r0 > 1 ? r0 + (r1 - r0) / 2 : r1;
+  int ranges[4][4];
+  int n = 0;
+  const int cs[3] = { c0, cm, c1 };
+  const int rs[3] = { r0, rm, r1 };
+  for (int rr = 0; rr < 2; ++rr)
+  {
+    for (int cc = 0; cc < 2; ++cc)
+    {
+      if (cs[cc] < cs[cc + 1] && rs[rr] < rs[rr + 1])
+      {
+        ranges[n][0] = cs[cc];
+        ranges[n][1] = cs[cc + 1];
+        ranges[n][2] = rs[rr];
+        ranges[n][3] = rs[rr + 1];
+        ++n;
+      }
+    }
+  }
+  const int first = static_cast<int>(qt.nodes.size());
+  qt.nodes.resize(qt.nodes.size() + n);
+  qt.nodes[nodeIndex].firstChild = first;
+  qt.nodes[nodeIndex].childCount = n;
+  Box box = emptyBox();
+  for (int k = 0; k < n; ++k)
+  {
+    buildNode(qt, first + k, ranges[k][0], ranges[k][1], ranges[k][2], ranges[k][3]);
+    grow(box, qt.nodes[first + k].box);
+  }
+  qt.nodes[nodeIndex].box = box;
+}
+
+} // namespace
+
+std::vector<int> splitBands(int quads, int maxQuads)
+{
+  std::vector<int> starts;
+  splitInto(0, quads, std::max(1, maxQuads), starts);
+  starts.push_back(quads);
+  return starts;
+}
+
+Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads)
+{
+  Quadtree qt;
+  qt.colStart = splitBands(hf.nx - 1, maxBlockQuads);
+  qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads);
+  qt.blockCols = static_cast<int>(qt.colStart.size()) - 1;
+  qt.blockRows = static_cast<int>(qt.rowStart.size()) - 1;
+  qt.blockBox.resize(qt.blockCount());
+  qt.blockHasNodata.resize(qt.blockCount());
+  for (int r = 0; r < qt.blockRows; ++r)
+  {
+    for (int c = 0; c < qt.blockCols; ++c)
+    {
+      bool nodata = false;
+      const int b = qt.blockIndex(c, r);
+      qt.blockBox[b] =
+        sampleBox(hf, qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1], nodata);
+      qt.blockHasNodata[b] = nodata ? 1 : 0;
+    }
+  }
+  qt.nodes.reserve(2 * static_cast<std::size_t>(qt.blockCount()));
+  qt.nodes.resize(1);
+  buildNode(qt, 0, 0, qt.blockCols, 0, qt.blockRows);
+  return qt;
+}
+
+} // namespace gmm

@@ -1,0 +1,277 @@
+#include "SelectLevels.h"
+
+#include "Levels.h"
+#include "Tessellate.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gmm
+{
+
+namespace
+{
+
+enum class Overlap
+{
+  Outside,
+  Partial,
+  Inside
+};
+
+Overlap boxVsFrustum(const Box& box, const Frustum& fr)
+{
+  bool inside = true;
+  for (const glm::dvec4& p : fr)
+  {
+    // p-vertex: the box corner furthest along the plane normal; n-vertex: the nearest.
+    const glm::dvec3 pv(p.x >= 0 ? box.hi.x : box.lo.x, p.y >= 0 ? box.hi.y : box.lo.y,
+      p.z >= 0 ? box.hi.z : box.lo.z);
+    const glm::dvec3 nv(p.x >= 0 ? box.lo.x : box.hi.x, p.y >= 0 ? box.lo.y : box.hi.y,
+      p.z >= 0 ? box.lo.z : box.hi.z);
+    if (glm::dot(glm::dvec3(p), pv) + p.w < 0)
+    {
+      return Overlap::Outside;
+    }
+    if (glm::dot(glm::dvec3(p), nv) + p.w < 0)
+    {
+      inside = false;
+    }
+  }
+  return inside ? Overlap::Inside : Overlap::Partial;
+}
+
+void markSubtree(const Quadtree& qt, int node, std::vector<uint8_t>& visible, int& count)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  if (n.childCount == 0)
+  {
+    visible[n.block] = 1;
+    ++count;
+    return;
+  }
+  for (int k = 0; k < n.childCount; ++k)
+  {
+    markSubtree(qt, n.firstChild + k, visible, count);
+  }
+}
+
+void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8_t>& visible, int& count)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  const Overlap o = boxVsFrustum(n.box, fr);
+  if (o == Overlap::Outside)
+  {
+    return;
+  }
+  if (o == Overlap::Inside || n.childCount == 0)
+  {
+    markSubtree(qt, node, visible, count); // fully inside: no more plane tests below
+    return;
+  }
+  for (int k = 0; k < n.childCount; ++k)
+  {
+    cullNode(qt, n.firstChild + k, fr, visible, count);
+  }
+}
+
+int blockTop(const Quadtree& qt, int b)
+{
+  const int c = b % qt.blockCols, r = b / qt.blockCols;
+  return topLevel(qt.colStart[c + 1] - qt.colStart[c], qt.rowStart[r + 1] - qt.rowStart[r]);
+}
+
+bool ringLevel(const Quadtree& qt, int b, int m)
+{
+  const int c = b % qt.blockCols, r = b / qt.blockCols;
+  return blockShape(qt.colStart[c + 1] - qt.colStart[c], qt.rowStart[r + 1] - qt.rowStart[r], m) ==
+    BlockShape::Ring;
+}
+
+// Coarsest valid level whose (monotone) own error fits the budget; level 0 always fits.
+int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
+{
+  for (int m = top; m > 0; --m)
+  {
+    if (t.own(b, m) <= budget)
+    {
+      return m;
+    }
+  }
+  return 0;
+}
+
+// Refines neighbours until every strip joined to a coarser edge fits its block's budget.
+// Levels only decrease, so this ends; a neighbour at the block's level (or finer) removes
+// the coarse edge altogether.
+void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
+  std::vector<int8_t>& levels)
+{
+  std::vector<int> work;
+  std::vector<uint8_t> queued(levels.size(), 0);
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    if (levels[b] > 0 || (levels[b] == 0 && ringLevel(qt, b, 0)))
+    {
+      work.push_back(b);
+      queued[b] = 1;
+    }
+  }
+  while (!work.empty())
+  {
+    const int b = work.back();
+    work.pop_back();
+    queued[b] = 0;
+    const int m = levels[b];
+    if (m < 0 || !ringLevel(qt, b, m))
+    {
+      continue; // one-quad and thin blocks have corner-only edges: nothing to join
+    }
+    const BlockConfig cfg = blockConfigOf(qt, levels, b);
+    const int c = b % qt.blockCols, r = b / qt.blockCols;
+    const int neighbour[4] = { b - qt.blockCols, b + 1, b + qt.blockCols, b - 1 };
+    const bool exists[4] = { r > 0, c + 1 < qt.blockCols, r + 1 < qt.blockRows, c > 0 };
+    for (int side = 0; side < 4; ++side)
+    {
+      const int n = cfg.edgeLevel[side];
+      if (!exists[side] || n <= m || t.strip(b, side, m, n) <= budget[b])
+      {
+        continue;
+      }
+      const int nb = neighbour[side];
+      int target = n - 1;
+      while (target > m && (t.own(nb, target) == std::numeric_limits<float>::infinity() ||
+                             t.strip(b, side, m, target) > budget[b]))
+      {
+        --target;
+      }
+      // target == m may be invalid for the neighbour (a smaller block): go finer still.
+      while (target > 0 && t.own(nb, target) == std::numeric_limits<float>::infinity())
+      {
+        --target;
+      }
+      levels[nb] = static_cast<int8_t>(target);
+      if (!queued[nb])
+      {
+        work.push_back(nb);
+        queued[nb] = 1;
+      }
+    }
+  }
+}
+
+void selectWithBudgets(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& budget,
+  std::vector<int8_t>& levels)
+{
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    if (levels[b] >= 0)
+    {
+      levels[b] = static_cast<int8_t>(coarsestWithin(table, b, blockTop(qt, b), budget[b]));
+    }
+  }
+  fixStrips(qt, table, budget, levels);
+}
+
+} // namespace
+
+int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible)
+{
+  visible.assign(qt.blockCount(), 0);
+  int count = 0;
+  if (!qt.nodes.empty())
+  {
+    cullNode(qt, 0, frustum, visible, count);
+  }
+  return count;
+}
+
+void projectionFactors(const Quadtree& qt, const View& view, const std::vector<uint8_t>& visible,
+  ErrorMetric metric, std::vector<double>& factor)
+{
+  factor.assign(qt.blockCount(), 0.0);
+  const double ppu = pixelsPerUnit(view);
+  const CameraFrame cam = cameraFrameOf(view);
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    if (!visible[b])
+    {
+      continue;
+    }
+    if (view.parallel)
+    {
+      factor[b] = ppu; // orthographic: same scale at every depth
+      continue;
+    }
+    const Box& box = qt.blockBox[b];
+    if (metric == ErrorMetric::CenterDistance)
+    {
+      const double d = glm::length(0.5 * (box.lo + box.hi) - view.eye);
+      factor[b] = ppu / std::max(d, view.nearDistance);
+      continue;
+    }
+    double maxDist2 = 0.0, minDepth = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 8; ++k)
+    {
+      const glm::dvec3 corner(
+        (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z);
+      const glm::dvec3 q = corner - view.eye;
+      maxDist2 = std::max(maxDist2, glm::dot(q, q));
+      minDepth = std::min(minDepth, glm::dot(q, cam.forward));
+    }
+    const double depth = std::max(minDepth, view.nearDistance);
+    factor[b] = ppu * std::sqrt(maxDist2) / (depth * depth);
+  }
+}
+
+void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& factor,
+  double tau, std::vector<int8_t>& levels)
+{
+  std::vector<double> budget(qt.blockCount(), 0.0);
+  levels.assign(qt.blockCount(), -1);
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    if (factor[b] > 0.0)
+    {
+      levels[b] = 0;
+      budget[b] = std::isfinite(factor[b]) ? tau / factor[b] : 0.0;
+    }
+  }
+  selectWithBudgets(qt, table, budget, levels);
+}
+
+void selectLevelsForError(
+  const Quadtree& qt, const ErrorTable& table, double maxError, std::vector<int8_t>& levels)
+{
+  std::vector<double> budget(qt.blockCount(), maxError);
+  levels.assign(qt.blockCount(), 0);
+  selectWithBudgets(qt, table, budget, levels);
+}
+
+double blockCertifiedError(
+  const Quadtree& qt, const ErrorTable& table, const std::vector<int8_t>& levels, int block)
+{
+  const int m = levels[block];
+  if (m < 0)
+  {
+    return 0.0;
+  }
+  double e = table.ownExact(block, m);
+  if (ringLevel(qt, block, m))
+  {
+    const BlockConfig cfg = blockConfigOf(qt, levels, block);
+    for (int side = 0; side < 4; ++side)
+    {
+      if (cfg.edgeLevel[side] > m)
+      {
+        e = std::max(e, static_cast<double>(table.strip(block, side, m, cfg.edgeLevel[side])));
+      }
+    }
+  }
+  return e;
+}
+
+} // namespace gmm

@@ -1,0 +1,273 @@
+#include "Tessellate.h"
+
+#include "Levels.h"
+
+#include <cmath>
+
+namespace gmm
+{
+
+namespace
+{
+
+struct GridPoint
+{
+  int i, j;
+};
+
+// Collects triangles for one block: converts grid points to vertex indices, drops triangles
+// touching nodata unless asked to keep them, and keeps counter-clockwise world winding.
+class TriangleSink
+{
+public:
+  TriangleSink(const Heightfield& hf, std::vector<uint32_t>& out, bool keepNodata)
+    : hf_(hf)
+    , out_(out)
+    , keepNodata_(keepNodata)
+    , mirrored_(hf.mirrored())
+  {
+  }
+
+  // a, b, c are counter-clockwise in (i, j) grid space.
+  void triangle(GridPoint a, GridPoint b, GridPoint c)
+  {
+    const uint32_t ia = static_cast<uint32_t>(hf_.index(a.i, a.j));
+    const uint32_t ib = static_cast<uint32_t>(hf_.index(b.i, b.j));
+    const uint32_t ic = static_cast<uint32_t>(hf_.index(c.i, c.j));
+    if (!keepNodata_ && (std::isnan(hf_.z[ia]) || std::isnan(hf_.z[ib]) || std::isnan(hf_.z[ic])))
+    {
+      return;
+    }
+    out_.push_back(ia);
+    // A mirrored grid -> world map reverses orientation: swap to stay CCW in world space.
+    out_.push_back(mirrored_ ? ic : ib);
+    out_.push_back(mirrored_ ? ib : ic);
+  }
+
+  // Quad with corners (i0, j0)-(i1, j1), split along its (i0, j0)-(i1, j1) diagonal.
+  void quad(int i0, int j0, int i1, int j1)
+  {
+    triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
+    triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
+  }
+
+private:
+  const Heightfield& hf_;
+  std::vector<uint32_t>& out_;
+  bool keepNodata_;
+  bool mirrored_;
+};
+
+struct BlockRect
+{
+  int i0, i1, j0, j1;
+};
+
+BlockRect blockRect(const Quadtree& qt, int block)
+{
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  return BlockRect{ qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1] };
+}
+
+// One row band of the inner grid: quads between rows ja and jb over the given columns.
+void drawHStrip(TriangleSink& sink, const std::vector<int>& cols, int ja, int jb)
+{
+  for (std::size_t u = 0; u + 1 < cols.size(); ++u)
+  {
+    sink.quad(cols[u], ja, cols[u + 1], jb);
+  }
+}
+
+// Inner grid of a ring block: samples cols[1..k-1] x rows[1..L-1] at the block's own step.
+void drawArea(TriangleSink& sink, const std::vector<int>& C, const std::vector<int>& R)
+{
+  const std::vector<int> inner(C.begin() + 1, C.end() - 1);
+  for (std::size_t t = 1; t + 2 < R.size(); ++t)
+  {
+    drawHStrip(sink, inner, R[t], R[t + 1]);
+  }
+}
+
+// Fan from `apex` over consecutive points run[first..last], which lie on the line opposite
+// the apex. apexOnOuter says which side of the strip the apex is on, to keep CCW order.
+void drawFan(TriangleSink& sink, GridPoint apex, const std::vector<GridPoint>& run,
+  std::size_t first, std::size_t last, bool apexOnOuter)
+{
+  for (std::size_t k = first; k < last; ++k)
+  {
+    if (apexOnOuter)
+    {
+      sink.triangle(apex, run[k + 1], run[k]); // (o_a, in_{b+1}, in_b)
+    }
+    else
+    {
+      sink.triangle(run[k], run[k + 1], apex); // (o_a, o_{a+1}, in_b)
+    }
+  }
+}
+
+// Joins the edge polyline (outer) to the inner ring polyline (inner) of one side. Both run
+// in the block's counter-clockwise direction; `along` gives each point's position along
+// the side. The merge advances whichever polyline's next point comes first, which cuts the
+// strip into alternating fans: any edge level joins any inner level.
+template <typename Along>
+void drawSideStrip(TriangleSink& sink, const std::vector<GridPoint>& outer,
+  const std::vector<GridPoint>& inner, Along along)
+{
+  std::size_t a = 0, b = 0;
+  while (a + 1 < outer.size() || b + 1 < inner.size())
+  {
+    const bool advanceOuter = b + 1 >= inner.size() ||
+      (a + 1 < outer.size() && along(outer[a + 1]) <= along(inner[b + 1]));
+    if (advanceOuter)
+    {
+      std::size_t end = a + 1;
+      while (end + 1 < outer.size() && (b + 1 >= inner.size() || along(outer[end + 1]) <= along(inner[b + 1])))
+      {
+        ++end;
+      }
+      drawFan(sink, inner[b], outer, a, end, false);
+      a = end;
+    }
+    else
+    {
+      std::size_t end = b + 1;
+      while (end + 1 < inner.size() && (a + 1 < outer.size() && along(inner[end + 1]) < along(outer[a + 1])))
+      {
+        ++end;
+      }
+      if (a + 1 >= outer.size())
+      {
+        end = inner.size() - 1;
+      }
+      drawFan(sink, outer[a], inner, b, end, true);
+      b = end;
+    }
+  }
+}
+
+void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
+  const std::vector<int>& R, int side, int edgeLevel)
+{
+  std::vector<int> edge;
+  std::vector<GridPoint> outer, inner;
+  const std::size_t k = C.size() - 1, L = R.size() - 1;
+  switch (side)
+  {
+    case South:
+      edgeSamples(r.i0, r.i1, edgeLevel, edge);
+      for (int x : edge)
+        outer.push_back({ x, r.j0 });
+      for (std::size_t u = 1; u < k; ++u)
+        inner.push_back({ C[u], R[1] });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.i; });
+      break;
+    case East:
+      edgeSamples(r.j0, r.j1, edgeLevel, edge);
+      for (int y : edge)
+        outer.push_back({ r.i1, y });
+      for (std::size_t t = 1; t < L; ++t)
+        inner.push_back({ C[k - 1], R[t] });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.j; });
+      break;
+    case North:
+      edgeSamples(r.i0, r.i1, edgeLevel, edge);
+      for (auto it = edge.rbegin(); it != edge.rend(); ++it)
+        outer.push_back({ *it, r.j1 });
+      for (std::size_t u = k - 1; u >= 1; --u)
+        inner.push_back({ C[u], R[L - 1] });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.i; });
+      break;
+    default: // West
+      edgeSamples(r.j0, r.j1, edgeLevel, edge);
+      for (auto it = edge.rbegin(); it != edge.rend(); ++it)
+        outer.push_back({ r.i0, *it });
+      for (std::size_t t = L - 1; t >= 1; --t)
+        inner.push_back({ C[1], R[t] });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.j; });
+      break;
+  }
+}
+
+} // namespace
+
+void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, std::vector<uint32_t>& out, bool keepNodata)
+{
+  TriangleSink sink(hf, out, keepNodata);
+  const BlockRect r = blockRect(qt, block);
+  const BlockShape shape = blockShape(r.i1 - r.i0, r.j1 - r.j0, config.level);
+  if (shape == BlockShape::OneQuad || shape == BlockShape::Thin)
+  {
+    if (part != BlockPart::Whole)
+    {
+      return;
+    }
+    if (shape == BlockShape::OneQuad)
+    {
+      sink.quad(r.i0, r.j0, r.i1, r.j1);
+      return;
+    }
+    // Thin: the DEM is one quad wide or tall, so the long sides have no neighbours and the
+    // short sides are single quads: a plain full-resolution strip is crack-free.
+    for (int j = r.j0; j < r.j1; ++j)
+      for (int i = r.i0; i < r.i1; ++i)
+        sink.quad(i, j, i + 1, j + 1);
+    return;
+  }
+  if (shape != BlockShape::Ring)
+  {
+    return;
+  }
+  std::vector<int> C, R;
+  edgeSamples(r.i0, r.i1, config.level, C);
+  edgeSamples(r.j0, r.j1, config.level, R);
+  if (part == BlockPart::Whole || part == BlockPart::Inner)
+  {
+    drawArea(sink, C, R);
+  }
+  for (int side = South; side <= West; ++side)
+  {
+    const bool wanted = part == BlockPart::Whole ||
+      static_cast<int>(part) == static_cast<int>(BlockPart::StripSouth) + side;
+    if (wanted)
+    {
+      drawSide(sink, r, C, R, side, config.edgeLevel[side]);
+    }
+  }
+}
+
+BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block)
+{
+  BlockConfig cfg;
+  cfg.level = levels[block];
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  const int neighbour[4] = {
+    r > 0 ? block - qt.blockCols : -1,
+    c + 1 < qt.blockCols ? block + 1 : -1,
+    r + 1 < qt.blockRows ? block + qt.blockCols : -1,
+    c > 0 ? block - 1 : -1,
+  };
+  for (int side = 0; side < 4; ++side)
+  {
+    const int nb = neighbour[side];
+    const int nl = nb >= 0 ? levels[nb] : -1;
+    cfg.edgeLevel[side] = nl > cfg.level ? nl : cfg.level;
+  }
+  return cfg;
+}
+
+void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  std::vector<uint32_t>& out)
+{
+  out.clear();
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    if (levels[b] >= 0)
+    {
+      emitBlock(hf, qt, b, blockConfigOf(qt, levels, b), BlockPart::Whole, out);
+    }
+  }
+}
+
+} // namespace gmm

@@ -1,0 +1,128 @@
+#include "View.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace gmm
+{
+
+namespace
+{
+bool finite3(const glm::dvec3& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+glm::dvec4 plane(const glm::dvec3& normal, const glm::dvec3& through)
+{
+  const glm::dvec3 n = glm::normalize(normal);
+  return glm::dvec4(n, -glm::dot(n, through));
+}
+} // namespace
+
+std::string validateView(const View& v)
+{
+  std::ostringstream why;
+  if (!finite3(v.eye) || !finite3(v.forward) || !finite3(v.up))
+  {
+    return "camera position, direction and view-up must be finite";
+  }
+  const double fl = glm::length(v.forward);
+  if (!(fl > 0.0) || !std::isfinite(fl))
+  {
+    return "camera direction has zero length";
+  }
+  const glm::dvec3 f = v.forward / fl;
+  const double ul = glm::length(v.up);
+  if (!(ul > 0.0) || glm::length(glm::cross(f, v.up / ul)) < 1e-9)
+  {
+    return "camera view-up is zero or parallel to the view direction";
+  }
+  if (!v.parallel && !(v.fovYDegrees > 0.0 && v.fovYDegrees < 180.0))
+  {
+    why << "field of view " << v.fovYDegrees << " degrees is outside (0, 180)";
+    return why.str();
+  }
+  if (v.parallel && !(v.parallelScale > 0.0 && std::isfinite(v.parallelScale)))
+  {
+    why << "parallel scale " << v.parallelScale << " must be positive";
+    return why.str();
+  }
+  if (!(v.nearDistance > 0.0) || !(v.farDistance > v.nearDistance) || !std::isfinite(v.farDistance))
+  {
+    why << "clipping range (" << v.nearDistance << ", " << v.farDistance
+        << ") must satisfy 0 < near < far < inf";
+    return why.str();
+  }
+  if (v.viewportWidth < 1 || v.viewportHeight < 1)
+  {
+    why << "viewport " << v.viewportWidth << " x " << v.viewportHeight << " is empty";
+    return why.str();
+  }
+  return std::string();
+}
+
+CameraFrame cameraFrameOf(const View& v)
+{
+  CameraFrame c;
+  c.forward = glm::normalize(v.forward);
+  c.right = glm::normalize(glm::cross(c.forward, v.up));
+  c.up = glm::cross(c.right, c.forward);
+  return c;
+}
+
+Frustum frustumOf(const View& v)
+{
+  const CameraFrame c = cameraFrameOf(v);
+  const double aspect = static_cast<double>(v.viewportWidth) / v.viewportHeight;
+  Frustum fr;
+  if (v.parallel)
+  {
+    const double sy = v.parallelScale, sx = sy * aspect;
+    fr[0] = plane(c.right, v.eye - c.right * sx);
+    fr[1] = plane(-c.right, v.eye + c.right * sx);
+    fr[2] = plane(c.up, v.eye - c.up * sy);
+    fr[3] = plane(-c.up, v.eye + c.up * sy);
+  }
+  else
+  {
+    const double ty = std::tan(v.fovYDegrees * M_PI / 360.0), tx = ty * aspect;
+    fr[0] = plane(c.right + c.forward * tx, v.eye);
+    fr[1] = plane(-c.right + c.forward * tx, v.eye);
+    fr[2] = plane(c.up + c.forward * ty, v.eye);
+    fr[3] = plane(-c.up + c.forward * ty, v.eye);
+  }
+  fr[4] = plane(c.forward, v.eye + c.forward * v.nearDistance);
+  fr[5] = plane(-c.forward, v.eye + c.forward * v.farDistance);
+  return fr;
+}
+
+double pixelsPerUnit(const View& v)
+{
+  const double half = 0.5 * v.viewportHeight;
+  if (v.parallel)
+  {
+    return half / v.parallelScale;
+  }
+  return half / std::tan(v.fovYDegrees * M_PI / 360.0);
+}
+
+bool projectToPixels(const View& v, const glm::dvec3& p, double& px, double& py)
+{
+  const CameraFrame c = cameraFrameOf(v);
+  const glm::dvec3 q = p - v.eye;
+  const double depth = glm::dot(q, c.forward);
+  if (depth < v.nearDistance)
+  {
+    return false;
+  }
+  const double f = pixelsPerUnit(v);
+  const double scale = v.parallel ? f : f / depth;
+  px = 0.5 * v.viewportWidth + glm::dot(q, c.right) * scale;
+  py = 0.5 * v.viewportHeight + glm::dot(q, c.up) * scale;
+  return true;
+}
+
+} // namespace gmm
