@@ -20,6 +20,16 @@ int64_t edgeFn(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
 }
 
+int64_t floorDiv(int64_t a, int64_t b) // b > 0
+{
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+int64_t ceilDiv(int64_t a, int64_t b) // b > 0
+{
+  return a >= 0 ? (a + b - 1) / b : -((-a) / b);
+}
+
 // Error of one triangle over the samples it covers (edges included), in grid space.
 // strict: a nodata vertex or covered nodata sample is an infinite error (the triangle would
 // draw over a hole); otherwise a nodata-touching triangle is an accepted full-res hole.
@@ -33,27 +43,43 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
     return strict ? kInf : 0.0f;
   }
   int64_t area = edgeFn(ax, ay, bx, by, cx, cy);
-  const double sign = area < 0 ? -1.0 : 1.0;
   if (area == 0)
   {
     return 0.0f; // no sample strictly covered; cannot happen for emitted triangles
   }
+  const int64_t sign = area < 0 ? -1 : 1;
   const double invArea = 1.0 / static_cast<double>(area);
   const int64_t i0 = std::min({ ax, bx, cx }), i1 = std::max({ ax, bx, cx });
   const int64_t j0 = std::min({ ay, by, cy }), j1 = std::max({ ay, by, cy });
+  // Edge e (p -> q) as a function of i on row j: sign * E = slope * i + offset, and a
+  // sample is covered when all three are >= 0. Solving each for i gives the exact covered
+  // span of the row with integers, so skinny strip triangles cost only what they cover.
+  const int64_t px[3] = { bx, cx, ax }, py[3] = { by, cy, ay };
+  const int64_t qx[3] = { cx, ax, bx }, qy[3] = { cy, ay, by };
   float worst = 0.0f;
   for (int64_t j = j0; j <= j1; ++j)
   {
-    const float* row = hf.z.data() + j * nx;
-    for (int64_t i = i0; i <= i1; ++i)
+    int64_t lo = i0, hi = i1;
+    for (int e = 0; e < 3; ++e)
     {
-      const int64_t w0 = edgeFn(bx, by, cx, cy, i, j);
-      const int64_t w1 = edgeFn(cx, cy, ax, ay, i, j);
-      const int64_t w2 = edgeFn(ax, ay, bx, by, i, j);
-      if (sign * w0 < 0 || sign * w1 < 0 || sign * w2 < 0)
+      const int64_t slope = -sign * (qy[e] - py[e]);
+      const int64_t offset = sign * ((qx[e] - px[e]) * (j - py[e]) + (qy[e] - py[e]) * px[e]);
+      if (slope > 0)
       {
-        continue;
+        lo = std::max(lo, ceilDiv(-offset, slope));
       }
+      else if (slope < 0)
+      {
+        hi = std::min(hi, floorDiv(offset, -slope));
+      }
+      else if (offset < 0)
+      {
+        hi = lo - 1;
+      }
+    }
+    const float* row = hf.z.data() + j * nx;
+    for (int64_t i = lo; i <= hi; ++i)
+    {
       const float h = row[i];
       if (std::isnan(h))
       {
@@ -63,6 +89,9 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
         }
         continue;
       }
+      const double w0 = static_cast<double>(edgeFn(bx, by, cx, cy, i, j));
+      const double w1 = static_cast<double>(edgeFn(cx, cy, ax, ay, i, j));
+      const double w2 = static_cast<double>(area) - w0 - w1;
       const double surface = (w0 * za + w1 * zb + w2 * zc) * invArea;
       worst = std::max(worst, static_cast<float>(std::abs(h - surface)));
     }
