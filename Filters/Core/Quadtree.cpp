@@ -125,6 +125,7 @@ std::vector<int> splitBands(int quads, int maxQuads)
 Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads)
 {
   Quadtree qt;
+  maxBlockQuads = std::max(4, maxBlockQuads);
   qt.colStart = splitBands(hf.nx - 1, maxBlockQuads);
   qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads);
   qt.blockCols = static_cast<int>(qt.colStart.size()) - 1;

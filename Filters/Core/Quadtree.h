@@ -50,7 +50,9 @@ struct Quadtree
 // down). Returns band start positions plus the end (so size = bands + 1).
 std::vector<int> splitBands(int quads, int maxQuads);
 
-// Builds the quadtree. maxBlockQuads >= 2. The heightfield must be valid.
+// Builds the quadtree. maxBlockQuads below 4 is raised to 4: smaller bands could leave a
+// one-quad-wide block between two neighbours, which no block shape stitches. The
+// heightfield must be valid.
 Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads);
 
 } // namespace gmm
