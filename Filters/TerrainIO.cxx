@@ -1,0 +1,441 @@
+#include "TerrainIO.h"
+
+#include <GeographicLib/Ellipsoid.hpp>
+#include <OpenImageIO/imageio.h>
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <mutex>
+#include <new>
+#include <set>
+#include <sys/stat.h>
+
+namespace gmm
+{
+namespace
+{
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr long long kMaxSamples = 2147483647LL;
+// Compressed formats: a sample costs at least 1/1100 byte (deflate tops out near 1032:1),
+// with a floor so that small, highly compressible files still read.
+constexpr double kMaxCompression = 1100.0;
+constexpr double kCompressedFloorBytes = 64.0 * 1024 * 1024;
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+bool hasImageExtension(const std::string& path)
+{
+  static const std::set<std::string> ext = { "png", "jpg", "jpeg", "bmp", "tga", "pgm", "ppm",
+    "pnm", "exr", "hdr", "gif", "webp" };
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos)
+  {
+    return false;
+  }
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext.count(e) > 0;
+}
+
+// Decoded bytes the header claims, against what the file can hold. minBytesPerSample > 0:
+// uncompressed or text format (each sample needs that many bytes in the file); 0: compressed.
+std::string checkSize(long long nx, long long ny, double fileSize, double minBytesPerSample)
+{
+  if (nx < 1 || ny < 1)
+  {
+    return "has an empty raster (" + std::to_string(nx) + " x " + std::to_string(ny) + ")";
+  }
+  if (nx > kMaxSamples / ny)
+  {
+    return "claims " + std::to_string(nx) + " x " + std::to_string(ny) +
+      " samples, more than the 2^31 - 1 this reader accepts";
+  }
+  const double samples = static_cast<double>(nx) * ny;
+  const double limit = minBytesPerSample > 0
+    ? fileSize / minBytesPerSample
+    : std::max(fileSize * kMaxCompression, kCompressedFloorBytes) / 4.0;
+  if (samples > limit)
+  {
+    return "claims " + std::to_string(nx) + " x " + std::to_string(ny) + " samples, but the file (" +
+      std::to_string(static_cast<long long>(fileSize)) +
+      " bytes) cannot hold that many: truncated or corrupt header";
+  }
+  return std::string();
+}
+
+// Captures GDAL's errors (thread-local handler) so they end up in the VTK error text.
+struct GdalErrors
+{
+  std::string text;
+  static void CPL_STDCALL handler(CPLErr cls, CPLErrorNum, const char* msg)
+  {
+    auto* self = static_cast<GdalErrors*>(CPLGetErrorHandlerUserData());
+    if (self && cls >= CE_Failure && msg)
+    {
+      self->text += (self->text.empty() ? "" : "; ") + std::string(msg);
+    }
+  }
+  GdalErrors() { CPLPushErrorHandlerEx(&GdalErrors::handler, this); }
+  ~GdalErrors() { CPLPopErrorHandler(); }
+  std::string suffix() const { return text.empty() ? std::string() : " (GDAL: " + text + ")"; }
+};
+
+struct GdalDataset
+{
+  GDALDatasetH h = nullptr;
+  ~GdalDataset()
+  {
+    if (h)
+    {
+      GDALClose(h);
+    }
+  }
+};
+
+double footToMetre(const std::string& unit)
+{
+  std::string u = unit;
+  std::transform(u.begin(), u.end(), u.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (u.find("us survey") != std::string::npos || u == "us-ft" || u == "ftus")
+  {
+    return 1200.0 / 3937.0;
+  }
+  if (u == "ft" || u == "feet" || u == "foot" || u == "international foot")
+  {
+    return 0.3048;
+  }
+  return 1.0;
+}
+
+std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOptions& opt,
+  TerrainRaster& out, double& unitToMetre)
+{
+  const std::string driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds));
+  out.format = driver;
+  out.nx = 0;
+  out.ny = 0;
+  const long long nx = GDALGetRasterXSize(ds), ny = GDALGetRasterYSize(ds);
+  if (GDALGetRasterCount(ds) < 1)
+  {
+    return "has no raster band";
+  }
+  GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+  const GDALDataType type = GDALGetRasterDataType(band);
+  if (type == GDT_Unknown || GDALDataTypeIsComplex(type))
+  {
+    return std::string("has an unsupported sample type (") + GDALGetDataTypeName(type) + ")";
+  }
+  static const std::set<std::string> text = { "AAIGrid", "GRASSASCIIGrid", "USGSDEM", "XYZ",
+    "ISG", "GXF" };
+  static const std::set<std::string> raw = { "SRTMHGT", "EHdr", "ENVI", "GenBin", "BT", "PAux" };
+  double minBytes = 0.0;
+  if (text.count(driver))
+  {
+    minBytes = 2.0; // a digit and a separator
+  }
+  else if (raw.count(driver) ||
+    (driver == "GTiff" && !GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE")))
+  {
+    minBytes = GDALGetDataTypeSizeBytes(type);
+  }
+  std::string problem = checkSize(nx, ny, fileSize, minBytes);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  out.nx = static_cast<int>(nx);
+  out.ny = static_cast<int>(ny);
+  const char* unit = GDALGetRasterUnitType(band);
+  out.heightUnit = (unit && *unit) ? unit : "m";
+  unitToMetre = footToMetre(out.heightUnit);
+
+  double gt[6] = { 0, 1, 0, 0, 0, 1 };
+  const bool hasGt = GDALGetGeoTransform(ds, gt) == CE_None;
+  if (!hasGt)
+  {
+    // No georeference: like an image (north up, origin 0, the reader's Spacing).
+    out.x0 = out.y0 = 0.0;
+    out.dx = out.dy = opt.spacing;
+    return std::string();
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0 || gt[1] == 0.0 || gt[5] == 0.0)
+  {
+    return "has a rotated or degenerate geotransform, which is not supported";
+  }
+  OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
+  bool geographic = srs && OSRIsGeographic(srs);
+  double linear = 1.0;
+  if (srs)
+  {
+    const char* auth = OSRGetAuthorityName(srs, nullptr);
+    const char* code = OSRGetAuthorityCode(srs, nullptr);
+    if (auth && code)
+    {
+      out.crs = std::string(auth) + ":" + code;
+    }
+    else
+    {
+      char* wkt = nullptr;
+      OSRExportToWkt(srs, &wkt);
+      out.crs = wkt ? wkt : "unknown";
+      CPLFree(wkt);
+    }
+    if (!geographic)
+    {
+      linear = OSRGetLinearUnits(srs, nullptr);
+    }
+  }
+  // Sample centres of the south-west and north-east samples (GDAL corners + 0.5 pixel).
+  const double xa = gt[0] + 0.5 * gt[1], xb = gt[0] + (nx - 0.5) * gt[1];
+  const double ya = gt[3] + 0.5 * gt[5], yb = gt[3] + (ny - 0.5) * gt[5];
+  const double west = std::min(xa, xb), east = std::max(xa, xb);
+  const double south = std::min(ya, yb), north = std::max(ya, yb);
+  if (!srs && west >= -180.5 && east <= 180.5 && south >= -90.5 && north <= 90.5 &&
+    std::abs(gt[1]) < 1.0 && std::abs(gt[5]) < 1.0)
+  {
+    geographic = true; // e.g. an ESRI .asc without .prj holding lon/lat
+    out.crs = "EPSG:4326 (assumed)";
+  }
+  if (geographic)
+  {
+    const GeographicLib::Ellipsoid& wgs84 = GeographicLib::Ellipsoid::WGS84();
+    const double latc = 0.5 * (south + north);
+    const double m = wgs84.MeridionalCurvatureRadius(latc);
+    const double n = wgs84.TransverseCurvatureRadius(latc);
+    out.geographic = true;
+    out.lon0 = west;
+    out.lat0 = south;
+    out.x0 = out.y0 = 0.0;
+    out.dx = std::abs(gt[1]) * kPi / 180.0 * n * std::cos(latc * kPi / 180.0);
+    out.dy = std::abs(gt[5]) * kPi / 180.0 * m;
+  }
+  else
+  {
+    out.x0 = west * linear;
+    out.y0 = south * linear;
+    out.dx = std::abs(gt[1]) * linear;
+    out.dy = std::abs(gt[5]) * linear;
+  }
+  return std::string();
+}
+
+std::string gdalRead(const std::string& path, double fileSize, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>* progress)
+{
+  static std::once_flag once;
+  std::call_once(once, []() { GDALAllRegister(); });
+  GdalErrors errors;
+  GdalDataset ds;
+  ds.h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  if (!ds.h)
+  {
+    return "is not a raster GDAL can read" + errors.suffix();
+  }
+  double unitToMetre = 1.0;
+  std::string problem = gdalHeader(ds.h, fileSize, opt, out, unitToMetre);
+  if (!problem.empty() || !progress)
+  {
+    return problem.empty() ? problem : problem + errors.suffix();
+  }
+  GDALRasterBandH band = GDALGetRasterBand(ds.h, 1);
+  double gt[6] = { 0, 1, 0, 0, 0, -1 };
+  GDALGetGeoTransform(ds.h, gt);
+  const bool flipRows = gt[5] < 0.0, flipCols = gt[1] < 0.0;
+  int hasNodata = 0, hasScale = 0, hasOffset = 0;
+  const double nodata = GDALGetRasterNoDataValue(band, &hasNodata);
+  const float nodataF = static_cast<float>(nodata);
+  const double bandScale = GDALGetRasterScale(band, &hasScale);
+  const double bandOffset = GDALGetRasterOffset(band, &hasOffset);
+  const double scale = (hasScale ? bandScale : 1.0) * unitToMetre * opt.heightScale;
+  const double offset = (hasOffset ? bandOffset : 0.0) * unitToMetre * opt.heightScale + opt.heightOffset;
+
+  const int nx = out.nx, ny = out.ny;
+  out.z.resize(static_cast<std::size_t>(nx) * ny);
+  const int chunk = std::max(1, std::min(ny, (1 << 22) / nx));
+  std::vector<float> buf(static_cast<std::size_t>(chunk) * nx);
+  for (int r0 = 0; r0 < ny; r0 += chunk)
+  {
+    const int rows = std::min(chunk, ny - r0);
+    if (GDALRasterIO(band, GF_Read, 0, r0, nx, rows, buf.data(), nx, rows, GDT_Float32, 0, 0) !=
+      CE_None)
+    {
+      return "could not be read at rows " + std::to_string(r0) + ".." +
+        std::to_string(r0 + rows - 1) + ": truncated or corrupt" + errors.suffix();
+    }
+    for (int r = 0; r < rows; ++r)
+    {
+      const int j = flipRows ? ny - 1 - (r0 + r) : r0 + r;
+      const float* src = buf.data() + static_cast<std::size_t>(r) * nx;
+      float* dst = out.z.data() + static_cast<std::size_t>(j) * nx;
+      for (int c = 0; c < nx; ++c)
+      {
+        const float v = src[c];
+        const bool missing = !std::isfinite(v) || (hasNodata && v == nodataF);
+        dst[flipCols ? nx - 1 - c : c] = missing ? kNaN : static_cast<float>(scale * v + offset);
+      }
+    }
+    (*progress)(static_cast<double>(r0 + rows) / ny);
+  }
+  return std::string();
+}
+
+template <class T>
+void convertGrey(const T* src, int nx, int ny, double scale, double offset, float* z)
+{
+  for (int r = 0; r < ny; ++r) // image row 0 is the top (north): flip
+  {
+    float* dst = z + static_cast<std::size_t>(ny - 1 - r) * nx;
+    for (int c = 0; c < nx; ++c)
+    {
+      const double v = scale * static_cast<double>(src[static_cast<std::size_t>(r) * nx + c]) + offset;
+      dst[c] = std::isfinite(v) ? static_cast<float>(v) : kNaN;
+    }
+  }
+}
+
+std::string oiioRead(const std::string& path, double fileSize, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>* progress)
+{
+  using OIIO::TypeDesc;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in)
+  {
+    return "is not an image OpenImageIO can read (" + OIIO::geterror() + ")";
+  }
+  const OIIO::ImageSpec spec = in->spec();
+  out.format = in->format_name();
+  out.nx = out.ny = 0;
+  if (spec.depth > 1)
+  {
+    return "is a volume image, not a heightmap";
+  }
+  std::string problem = checkSize(spec.width, spec.height, fileSize, 0.0);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  const bool rgb = spec.nchannels >= 3;
+  if (rgb && !opt.terrainRGB)
+  {
+    return "has " + std::to_string(spec.nchannels) +
+      " channels (RGB): turn TerrainRGB on if it is a terrain-RGB tile, or convert it to greyscale";
+  }
+  if (!rgb && opt.terrainRGB)
+  {
+    return "is greyscale but TerrainRGB is on: terrain-RGB needs an RGB(A) image";
+  }
+  if (rgb && spec.format != TypeDesc::UINT8)
+  {
+    return std::string("is terrain-RGB with ") + spec.format.c_str() + " channels; 8-bit expected";
+  }
+  out.nx = spec.width;
+  out.ny = spec.height;
+  out.dx = out.dy = opt.spacing;
+  out.x0 = out.y0 = 0.0;
+  out.heightUnit = rgb ? "m" : "stored unit";
+  if (!progress)
+  {
+    return std::string();
+  }
+  const int nx = out.nx, ny = out.ny;
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  out.z.resize(n);
+  const double scale = opt.heightScale, offset = opt.heightOffset;
+  const TypeDesc f = spec.format;
+  const bool isFloat = f == TypeDesc::HALF || f == TypeDesc::FLOAT || f == TypeDesc::DOUBLE;
+  // Integers are read in their own type: OpenImageIO would normalise them to [0, 1].
+  const TypeDesc readAs = isFloat ? TypeDesc(TypeDesc::FLOAT) : f;
+  const int channels = rgb ? 3 : 1;
+  std::vector<unsigned char> buf(n * channels * readAs.size());
+  if (!in->read_image(0, 0, 0, channels, readAs, buf.data()))
+  {
+    return "could not be decoded: truncated or corrupt (" + in->geterror() + ")";
+  }
+  (*progress)(0.8);
+  if (rgb)
+  {
+    for (int r = 0; r < ny; ++r)
+    {
+      const unsigned char* p = buf.data() + static_cast<std::size_t>(r) * nx * 3;
+      float* dst = out.z.data() + static_cast<std::size_t>(ny - 1 - r) * nx;
+      for (int c = 0; c < nx; ++c, p += 3)
+      {
+        const double h = (p[0] * 65536.0 + p[1] * 256.0 + p[2]) / 10.0 - 10000.0;
+        dst[c] = static_cast<float>(scale * h + offset);
+      }
+    }
+  }
+  else
+  {
+    switch (readAs.basetype)
+    {
+      case TypeDesc::UINT8: convertGrey(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT8: convertGrey(reinterpret_cast<int8_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT16: convertGrey(reinterpret_cast<uint16_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT16: convertGrey(reinterpret_cast<int16_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT32: convertGrey(reinterpret_cast<uint32_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT32: convertGrey(reinterpret_cast<int32_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::FLOAT: convertGrey(reinterpret_cast<float*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      default: return std::string("has an unsupported sample type (") + f.c_str() + ")";
+    }
+  }
+  (*progress)(1.0);
+  return std::string();
+}
+
+std::string readAny(const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out,
+  const std::function<void(double)>* progress)
+{
+  out = TerrainRaster();
+  struct stat st;
+  if (path.empty())
+  {
+    return "no file name was given";
+  }
+  if (stat(path.c_str(), &st) != 0)
+  {
+    return "does not exist or cannot be accessed";
+  }
+  if (!S_ISREG(st.st_mode))
+  {
+    return "is not a regular file";
+  }
+  if (st.st_size == 0)
+  {
+    return "is empty";
+  }
+  try
+  {
+    const double size = static_cast<double>(st.st_size);
+    return hasImageExtension(path) ? oiioRead(path, size, opt, out, progress)
+                                   : gdalRead(path, size, opt, out, progress);
+  }
+  catch (const std::bad_alloc&)
+  {
+    out.z = std::vector<float>();
+    return "needs more memory than is available";
+  }
+}
+
+} // namespace
+
+std::string readTerrainHeader(
+  const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out)
+{
+  return readAny(path, opt, out, nullptr);
+}
+
+std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>& progress)
+{
+  return readAny(path, opt, out, &progress);
+}
+
+} // namespace gmm

@@ -1,0 +1,44 @@
+// TerrainIO: GDAL / OpenImageIO reading behind vtkGeoMipMapTerrainReader (private header).
+//
+// Kept free of VTK so the format logic (georeference, units, nodata, size checks) reads in
+// one place; the reader only copies the result into a vtkImageData.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gmm
+{
+
+struct TerrainReadOptions
+{
+  double heightScale = 1.0;
+  double heightOffset = 0.0;
+  double spacing = 1.0; // images without georeference
+  bool terrainRGB = false;
+};
+
+struct TerrainRaster
+{
+  int nx = 0, ny = 0;
+  double x0 = 0.0, y0 = 0.0; // sample (0, 0): south-west, metres
+  double dx = 1.0, dy = 1.0; // metres, positive (rows are flipped to j northwards)
+  std::string crs = "none";
+  std::string format;        // GDAL driver / OpenImageIO format name
+  std::string heightUnit;
+  bool geographic = false;
+  double lon0 = 0.0, lat0 = 0.0; // geographic only: lon/lat of sample (0, 0)
+  std::vector<float> z;          // nx * ny, row j = northwards, NaN = nodata
+};
+
+// Reads the header only (no sample is read; nothing large is allocated). Returns "" on
+// success, else a sentence saying what is wrong (the caller adds the file name).
+std::string readTerrainHeader(
+  const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out);
+
+// Reads header and heights. progress(fraction) is called now and then.
+std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>& progress);
+
+} // namespace gmm

@@ -1,0 +1,142 @@
+#include "vtkGeoMipMapTerrainReader.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+
+#include "TerrainIO.h"
+
+#include <cmath>
+#include <cstring>
+
+vtkStandardNewMacro(vtkGeoMipMapTerrainReader);
+
+struct vtkGeoMipMapTerrainReader::Internals
+{
+  gmm::TerrainReadOptions Options(const vtkGeoMipMapTerrainReader* self) const
+  {
+    gmm::TerrainReadOptions opt;
+    opt.heightScale = self->HeightScale;
+    opt.heightOffset = self->HeightOffset;
+    opt.spacing = self->Spacing;
+    opt.terrainRGB = self->TerrainRGB != 0;
+    return opt;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapTerrainReader::vtkGeoMipMapTerrainReader()
+  : Internal(new Internals)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapTerrainReader::~vtkGeoMipMapTerrainReader()
+{
+  this->SetFileName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkGeoMipMapTerrainReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  const std::string name = this->FileName ? this->FileName : "";
+  if (!std::isfinite(this->Spacing) || this->Spacing <= 0.0)
+  {
+    vtkErrorMacro(<< "Cannot read '" << name << "': Spacing " << this->Spacing
+                  << " is not finite and positive.");
+    return 0;
+  }
+  // Header only: dimensions and georeference, without reading (or allocating) samples.
+  gmm::TerrainRaster header;
+  const std::string problem =
+    gmm::readTerrainHeader(name, this->Internal->Options(this), header);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< "Cannot read '" << name << "': the file " << problem << ".");
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int extent[6] = { 0, header.nx - 1, 0, header.ny - 1, 0, 0 };
+  double spacing[3] = { header.dx, header.dy, 1.0 };
+  double origin[3] = { header.x0, header.y0, 0.0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGeoMipMapTerrainReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  const std::string name = this->FileName ? this->FileName : "";
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (!output)
+  {
+    vtkErrorMacro(<< "Cannot read '" << name << "': no output image.");
+    return 0;
+  }
+  output->Initialize(); // a failed read must not leave the previous file's heights behind
+  this->UpdateProgress(0.0);
+  gmm::TerrainRaster raster;
+  const std::string problem = gmm::readTerrain(name, this->Internal->Options(this), raster,
+    [this](double f) { this->UpdateProgress(0.95 * f); });
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< "Cannot read '" << name << "': the file " << problem << ".");
+    return 0;
+  }
+
+  // The whole extent is always produced: the LOD engine needs all of it.
+  output->SetExtent(0, raster.nx - 1, 0, raster.ny - 1, 0, 0);
+  output->SetSpacing(raster.dx, raster.dy, 1.0);
+  output->SetOrigin(raster.x0, raster.y0, 0.0);
+  vtkNew<vtkFloatArray> heights;
+  heights->SetName("Elevation");
+  heights->SetNumberOfTuples(static_cast<vtkIdType>(raster.z.size()));
+  std::memcpy(heights->GetPointer(0), raster.z.data(), raster.z.size() * sizeof(float));
+  raster.z = std::vector<float>(); // release before the field data is built
+  output->GetPointData()->SetScalars(heights);
+
+  vtkFieldData* fd = output->GetFieldData();
+  auto addString = [fd](const char* key, const std::string& value) {
+    vtkNew<vtkStringArray> a;
+    a->SetName(key);
+    a->InsertNextValue(value);
+    fd->AddArray(a);
+  };
+  addString("CRS", raster.crs);
+  addString("SourceFormat", raster.format);
+  addString("HeightUnit", raster.heightUnit);
+  if (raster.geographic)
+  {
+    vtkNew<vtkDoubleArray> lonLat;
+    lonLat->SetName("GeographicOrigin");
+    lonLat->SetNumberOfComponents(2);
+    lonLat->InsertNextTuple2(raster.lon0, raster.lat0);
+    fd->AddArray(lonLat);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapTerrainReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "HeightScale: " << this->HeightScale << "\n";
+  os << indent << "HeightOffset: " << this->HeightOffset << "\n";
+  os << indent << "Spacing: " << this->Spacing << "\n";
+  os << indent << "TerrainRGB: " << (this->TerrainRGB ? "On" : "Off") << "\n";
+}

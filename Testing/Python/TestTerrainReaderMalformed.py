@@ -1,0 +1,111 @@
+"""vtkGeoMipMapTerrainReader on bad files, generated at test time in a temp folder.
+
+Each bad file must: fail the update, raise an ErrorEvent whose text names the file, not
+raise the peak memory (ru_maxrss) by more than 200 MB (the largest legitimate decode here
+is a few MB; an absurd header honoured would need GBs), and leave the same reader able to
+read a good file afterwards. Real-data variants (truncated copies) run only when the data
+folder exists.
+"""
+import os
+import shutil
+import tempfile
+
+import numpy as np
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.util.vtkConstants import VTK_UNSIGNED_CHAR, VTK_UNSIGNED_SHORT
+
+from geomipmap import vtkGeoMipMapTerrainReader
+from gmmtestutil import ErrorCatcher, check, max_rss_mb, update
+
+tmp = tempfile.mkdtemp(prefix="gmm-malformed-")
+here = os.path.dirname(os.path.abspath(__file__))
+data = os.environ.get("GEOMIPMAP_DATA") or os.path.join(here, "..", "..", "..", "shared", "data")
+
+
+def path(name):
+    return os.path.join(tmp, name)
+
+
+def write(name, content):
+    with open(path(name), "wb") as f:
+        f.write(content.encode() if isinstance(content, str) else content)
+    return path(name)
+
+
+def png(name, channels, vtk_type, values):
+    img = vtkImageData()
+    img.SetDimensions(16, 8, 1)
+    img.AllocateScalars(vtk_type, channels)
+    for k in range(img.GetNumberOfPoints()):
+        for c in range(channels):
+            img.GetPointData().GetScalars().SetComponent(k, c, values)
+    w = vtkPNGWriter()
+    w.SetFileName(path(name))
+    w.SetInputData(img)
+    w.Write()
+    return path(name)
+
+
+good_asc = write("good.asc", "ncols 3\nnrows 2\nxllcorner 500000\nyllcorner 4000000\n"
+                 "cellsize 10\nNODATA_value -9999\n1 2 3\n4 5 -9999\n")
+
+bad = []  # (file, reader options)
+bad.append((path("missing.tif"), {}))
+bad.append((write("empty.tif", b""), {}))
+bad.append((write("empty.hgt", b""), {}))
+rng = np.random.default_rng(7)
+for ext in ("tif", "dem", "asc", "png", "hgt", "bin"):
+    bad.append((write("random." + ext, rng.integers(0, 256, 100000, dtype=np.uint8).tobytes()), {}))
+for n in ("2147483648", "2147483647", "100000"):
+    bad.append((write("huge%s.asc" % n, "ncols %s\nnrows %s\nxllcorner 0\nyllcorner 0\n"
+                      "cellsize 1\nNODATA_value -9999\n1 2 3 4\n" % (n, n)), {}))
+bad.append((write("short.asc", "ncols 300\nnrows 200\nxllcorner 0\nyllcorner 0\n"
+                  "cellsize 1\n" + "1 " * 1000 + "\n"), {}))
+bad.append((png("grey16.png", 1, VTK_UNSIGNED_SHORT, 1000), {"TerrainRGB": 1}))
+bad.append((png("rgb.png", 3, VTK_UNSIGNED_CHAR, 100), {}))
+# Wrong sample type: an ENVI raster of complex floats.
+write("complex.hdr", "ENVI\nsamples = 4\nlines = 4\nbands = 1\nheader offset = 0\n"
+      "file type = ENVI Standard\ndata type = 6\ninterleave = bsq\nbyte order = 0\n")
+bad.append((write("complex.img", bytes(4 * 4 * 8)), {}))
+bad.append((good_asc, {"Spacing": 0.0}))
+if os.path.isdir(data):
+    for name, frac in (("N42E001.hgt", 0.5), ("mt_rainier_90m.tif", 0.5),
+                       ("SainteHelens.dem", 0.3), ("ps_height_1k.png", 0.5),
+                       ("fuji_terrain_rgb.png", 0.5), ("boulder_srtmgl3.asc", 0.4)):
+        with open(os.path.join(data, name), "rb") as f:
+            content = f.read()
+        opts = {"TerrainRGB": 1} if name.startswith("fuji") else {}
+        bad.append((write("truncated_" + name, content[: int(len(content) * frac)]), opts))
+else:
+    print("note: data folder absent, truncated real-file cases skipped")
+
+reader = vtkGeoMipMapTerrainReader()
+errors = ErrorCatcher(reader)
+rss0 = max_rss_mb()
+failures = []
+for f, opts in bad:
+    reader.SetTerrainRGB(0)
+    reader.SetSpacing(1.0)
+    for k, v in opts.items():
+        getattr(reader, "Set" + k)(v)
+    reader.SetFileName(f)
+    errors.clear()
+    ok = update(reader)
+    named = any(os.path.basename(f) in m for m in errors.messages)
+    print("%-32s update=%s error=%s" % (os.path.basename(f), ok,
+                                         [l for l in errors.messages[0].splitlines() if "Cannot read" in l][0].split(": ", 1)[-1][-170:] if errors.messages else None))
+    if ok or not named:
+        failures.append(os.path.basename(f))
+    # The same reader reads a good file right after.
+    reader.SetTerrainRGB(0)
+    reader.SetSpacing(1.0)
+    reader.SetFileName(good_asc)
+    errors.clear()
+    if not update(reader) or reader.GetOutput().GetDimensions() != (3, 2, 1):
+        failures.append("good file after " + os.path.basename(f))
+rss1 = max_rss_mb()
+shutil.rmtree(tmp, ignore_errors=True)
+check(not failures, "every bad file fails with an error naming it (bad: %s)" % failures)
+check(rss1 - rss0 < 200, "peak memory rose %.1f MB (< 200)" % (rss1 - rss0))
+print("PASS")
