@@ -1,0 +1,107 @@
+/**
+ * @class   vtkGeoMipMapFilter
+ * @brief   The triangles vtkGeoMipMapMapper would draw, as a vtkPolyData.
+ *
+ * Input: a 2D vtkImageData with heights as active point scalars (NaN = nodata), as for
+ * vtkGeoMipMapMapper. Output: the GeoMipMapping triangulation for one camera and viewport
+ * (or for a geometric error), with only the samples the triangles use (compacted, at
+ * their full-resolution positions), point scalars "Elevation", point normals "Normals"
+ * (full-resolution central differences, like the mapper's), and field data with the
+ * frame's statistics: Triangles, VisibleBlocks, CulledBlocks, MaximumScreenSpaceError,
+ * MaximumGeometricError.
+ *
+ * Modes:
+ * - view-dependent (a Camera is set and MaximumGeometricError <= 0): the same
+ *   conversion and engine call as the mapper, with ViewportSize as the viewport and the
+ *   camera's current clipping range; same camera and viewport give the same triangles.
+ * - view-independent (MaximumGeometricError > 0, or no Camera): every block at the
+ *   coarsest level within that many metres. The default (no camera, error 0) is a
+ *   lossless triangulation: flat regions coarsen, everything else stays at full
+ *   resolution.
+ *
+ * The camera is taken in the data's coordinates (no actor transform).
+ *
+ * @sa vtkGeoMipMapMapper
+ */
+#ifndef vtkGeoMipMapFilter_h
+#define vtkGeoMipMapFilter_h
+
+#include "geomipmapFiltersModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkCamera;
+
+class GEOMIPMAPFILTERS_EXPORT vtkGeoMipMapFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkGeoMipMapFilter* New();
+  vtkTypeMacro(vtkGeoMipMapFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Camera for the view-dependent mode (not owned exclusively; reference counted).
+   * Changes to the camera re-execute the filter.
+   */
+  void SetCamera(vtkCamera* camera);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /**
+   * Viewport size in pixels for the view-dependent mode. Default 1280 x 720.
+   */
+  vtkSetVector2Macro(ViewportSize, int);
+  vtkGetVector2Macro(ViewportSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Largest screen-space error in pixels (tau) in view-dependent mode. Default 1.0.
+   */
+  vtkSetClampMacro(PixelError, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(PixelError, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest block side in quads (>= 2). Default 64, as the mapper's.
+   */
+  vtkSetClampMacro(BlockSize, int, 2, VTK_INT_MAX);
+  vtkGetMacro(BlockSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * When > 0, view-independent mode with this error bound in metres. Default 0.
+   */
+  vtkSetClampMacro(MaximumGeometricError, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumGeometricError, double);
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkGeoMipMapFilter();
+  ~vtkGeoMipMapFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkCamera* Camera = nullptr;
+  int ViewportSize[2] = { 1280, 720 };
+  double PixelError = 1.0;
+  int BlockSize = 64;
+  double MaximumGeometricError = 0.0;
+
+private:
+  vtkGeoMipMapFilter(const vtkGeoMipMapFilter&) = delete;
+  void operator=(const vtkGeoMipMapFilter&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,152 @@
+// Helpers shared by the geomipmap VTK rendering tests: synthetic terrain images, a
+// full-resolution reference mesh built without the engine, window grabs and pixel counts.
+#ifndef GeoMipMapTestUtilities_h
+#define GeoMipMapTestUtilities_h
+
+#include "SyntheticTerrain.h"
+
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkRenderWindow.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
+
+#include "vtkNew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+namespace gmmtest
+{
+constexpr int SkipReturnCode = 125; // VTK_SKIP_RETURN_CODE
+
+// Value of "-D <dir>" on the command line, else $GEOMIPMAP_DATA, else ../shared/data.
+inline std::string DataDir(int argc, char* argv[])
+{
+  for (int i = 1; i + 1 < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-D")
+    {
+      return argv[i + 1];
+    }
+  }
+  const char* env = std::getenv("GEOMIPMAP_DATA");
+  return env ? env : "../shared/data";
+}
+
+// Deterministic fractal terrain as a vtkImageData with float "Elevation" point scalars.
+inline vtkSmartPointer<vtkImageData> SyntheticImage(
+  int nx, int ny, double spacing, unsigned seed, double amplitude, double x0 = 0, double y0 = 0)
+{
+  gmm::Heightfield hf = gmm::makeSyntheticTerrain(nx, ny, spacing, seed, amplitude, 1);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, 1);
+  image->SetSpacing(spacing, spacing, 1.0);
+  image->SetOrigin(x0, y0, 0.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  z->SetNumberOfTuples(static_cast<vtkIdType>(hf.z.size()));
+  std::copy(hf.z.begin(), hf.z.end(), z->GetPointer(0));
+  image->GetPointData()->SetScalars(z);
+  return image;
+}
+
+// Every grid quad as two triangles (skipping nodata), with normals from
+// vtkPolyDataNormals: an engine-independent reference surface.
+inline vtkSmartPointer<vtkPolyData> FullResolutionMesh(vtkImageData* image)
+{
+  int d[3];
+  image->GetDimensions(d);
+  vtkDataArray* h = image->GetPointData()->GetScalars();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(d[0]) * d[1]);
+  for (vtkIdType k = 0; k < pts->GetNumberOfPoints(); ++k)
+  {
+    double p[3];
+    image->GetPoint(k, p);
+    double z = h->GetComponent(k, 0);
+    pts->SetPoint(k, p[0], p[1], std::isfinite(z) ? z : 0.0);
+  }
+  vtkNew<vtkCellArray> tris;
+  auto ok = [h](vtkIdType k) { return std::isfinite(h->GetComponent(k, 0)); };
+  for (int j = 0; j + 1 < d[1]; ++j)
+  {
+    for (int i = 0; i + 1 < d[0]; ++i)
+    {
+      vtkIdType a = j * d[0] + i, b = a + 1, c = a + d[0], e = c + 1;
+      if (ok(a) && ok(b) && ok(c) && ok(e))
+      {
+        vtkIdType t1[3] = { a, b, e }, t2[3] = { a, e, c };
+        tris->InsertNextCell(3, t1);
+        tris->InsertNextCell(3, t2);
+      }
+    }
+  }
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(pts);
+  mesh->SetPolys(tris);
+  mesh->GetPointData()->SetScalars(h);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(mesh);
+  normals->SplittingOff();
+  normals->ConsistencyOff();
+  normals->Update();
+  return normals->GetOutput();
+}
+
+// The window's current RGB pixels.
+inline vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* win)
+{
+  vtkNew<vtkWindowToImageFilter> w2i;
+  w2i->SetInput(win);
+  w2i->SetInputBufferTypeToRGB();
+  w2i->ReadFrontBufferOff();
+  w2i->Update();
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(w2i->GetOutput());
+  return out;
+}
+
+inline unsigned char* Pixel(vtkImageData* img, int x, int y)
+{
+  return static_cast<unsigned char*>(img->GetScalarPointer(x, y, 0));
+}
+
+// Number of pixels whose largest channel difference exceeds `tol`.
+inline int CountDifferentPixels(vtkImageData* a, vtkImageData* b, int tol, int* maxDiff = nullptr)
+{
+  int d[3];
+  a->GetDimensions(d);
+  int count = 0, worst = 0;
+  for (int y = 0; y < d[1]; ++y)
+  {
+    for (int x = 0; x < d[0]; ++x)
+    {
+      unsigned char *p = Pixel(a, x, y), *q = Pixel(b, x, y);
+      int m = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        m = std::max(m, std::abs(int(p[c]) - int(q[c])));
+      }
+      worst = std::max(worst, m);
+      count += m > tol ? 1 : 0;
+    }
+  }
+  if (maxDiff)
+  {
+    *maxDiff = worst;
+  }
+  return count;
+}
+}
+
+#endif

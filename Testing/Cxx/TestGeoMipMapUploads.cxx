@@ -1,0 +1,132 @@
+// Buffer traffic of vtkGeoMipMapMapper: the vertex buffers are uploaded once per input
+// change (never for a camera move or a new PixelError), and the triangle index buffer is
+// uploaded only when the engine's indices change (never for a static camera). Also checks
+// that two renderers with different cameras sharing the mapper each get their own LOD.
+#include "GeoMipMapTestUtilities.h"
+#include "vtkGeoMipMapMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkRenderer.h"
+
+#include <iostream>
+
+#define CHECK(cond)                                                                         \
+  do                                                                                        \
+  {                                                                                         \
+    if (!(cond))                                                                            \
+    {                                                                                       \
+      std::cerr << __LINE__ << ": failed: " #cond "\n";                                   \
+      ++failures;                                                                           \
+    }                                                                                       \
+  } while (false)
+
+int TestGeoMipMapUploads(int, char*[])
+{
+  int failures = 0;
+  auto image = gmmtest::SyntheticImage(257, 257, 30.0, 3, 1500.0);
+  vtkNew<vtkGeoMipMapMapper> mapper;
+  mapper->SetInputData(image);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkNew<vtkRenderer> ren;
+  ren->AddActor(actor);
+  vtkNew<vtkRenderWindow> win;
+  win->SetOffScreenRendering(1);
+  win->SetSize(400, 300);
+  win->AddRenderer(ren);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetPosition(-2000, -3000, 4000);
+  cam->SetFocalPoint(3840, 3840, 700);
+  cam->SetViewUp(0, 0, 1);
+  ren->ResetCameraClippingRange();
+
+  win->Render();
+  const int v0 = mapper->GetNumberOfVertexUploads(), i0 = mapper->GetNumberOfIndexUploads();
+  std::cout << "first frame: vertex uploads " << v0 << ", index uploads " << i0
+            << ", triangles " << mapper->GetNumberOfRenderedTriangles() << "\n";
+  CHECK(v0 == 1);
+  CHECK(i0 >= 1);
+  CHECK(mapper->GetNumberOfRenderedTriangles() > 0);
+
+  // Static camera: nothing is uploaded, the indices are reused.
+  for (int k = 0; k < 3; ++k)
+  {
+    win->Render();
+  }
+  CHECK(mapper->GetIndicesReused());
+  CHECK(mapper->GetNumberOfVertexUploads() == v0);
+  CHECK(mapper->GetNumberOfIndexUploads() == i0);
+
+  // Camera moves: indices only, uploaded exactly when the engine made new ones.
+  mapper->SetPixelError(4.0);
+  win->Render();
+  int changed = 0;
+  for (int k = 0; k < 5; ++k)
+  {
+    const int before = mapper->GetNumberOfIndexUploads();
+    cam->Azimuth(10);
+    ren->ResetCameraClippingRange();
+    win->Render();
+    const int uploads = mapper->GetNumberOfIndexUploads() - before;
+    CHECK(uploads == (mapper->GetIndicesReused() ? 0 : 1));
+    changed += mapper->GetIndicesReused() ? 0 : 1;
+  }
+  CHECK(changed > 0);
+  const int i1 = mapper->GetNumberOfIndexUploads();
+  std::cout << "after 5 camera moves: vertex uploads " << mapper->GetNumberOfVertexUploads()
+            << ", index uploads " << i1 << "\n";
+  CHECK(mapper->GetNumberOfVertexUploads() == v0);
+  CHECK(i1 > i0);
+
+  // A new tau changes the indices, not the vertices.
+  const vtkIdType before = mapper->GetNumberOfRenderedTriangles();
+  mapper->SetPixelError(8.0);
+  win->Render();
+  std::cout << "tau 8: triangles " << mapper->GetNumberOfRenderedTriangles() << " (was "
+            << before << "), vertex uploads " << mapper->GetNumberOfVertexUploads() << "\n";
+  CHECK(mapper->GetNumberOfRenderedTriangles() < before);
+  CHECK(mapper->GetNumberOfVertexUploads() == v0);
+  CHECK(mapper->GetNumberOfIndexUploads() == i1 + 1);
+  mapper->SetPixelError(-1.0); // rejected with an error, previous value kept
+  CHECK(mapper->GetPixelError() == 8.0);
+
+  // New input data: the vertices are uploaded again.
+  image->Modified();
+  win->Render();
+  CHECK(mapper->GetNumberOfVertexUploads() == v0 + 1);
+
+  // Two renderers, different cameras, one mapper: the LOD follows the camera drawn.
+  // The right one sees the whole terrain from far above (few triangles), the left one
+  // is close to the ground.
+  ren->SetViewport(0, 0, 0.5, 1);
+  vtkNew<vtkRenderer> ren2;
+  ren2->SetViewport(0.5, 0, 1, 1);
+  ren2->AddActor(actor);
+  win->AddRenderer(ren2);
+  ren2->GetActiveCamera()->SetPosition(3840, 3840, 60000);
+  ren2->GetActiveCamera()->SetFocalPoint(3840, 3840, 0);
+  ren2->ResetCameraClippingRange();
+  cam->SetPosition(3000, 3000, 2500);
+  cam->SetFocalPoint(3840, 3840, 700);
+  ren->ResetCameraClippingRange();
+  ren2->DrawOff();
+  win->Render();
+  const vtkIdType nearTris = mapper->GetNumberOfRenderedTriangles();
+  ren2->DrawOn();
+  ren->DrawOff();
+  win->Render();
+  const vtkIdType farTris = mapper->GetNumberOfRenderedTriangles();
+  ren->DrawOn();
+  const int i2 = mapper->GetNumberOfIndexUploads();
+  win->Render(); // both: ren draws first, then ren2
+  std::cout << "near camera " << nearTris << " triangles, far camera " << farTris
+            << "; both renderers: last drawn " << mapper->GetNumberOfRenderedTriangles()
+            << ", index uploads in that frame " << mapper->GetNumberOfIndexUploads() - i2
+            << "\n";
+  CHECK(farTris < nearTris);
+  CHECK(mapper->GetNumberOfIndexUploads() - i2 == 2);
+  CHECK(mapper->GetNumberOfRenderedTriangles() == farTris);
+  CHECK(mapper->GetNumberOfVertexUploads() == v0 + 1);
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
