@@ -34,7 +34,7 @@ struct FrameStats
 class Engine
 {
 public:
-  // Validates `hf`, builds the quadtree (leaves at most maxBlockQuads quads a side, >= 2) and
+  // Validates `hf`, builds the quadtree (leaves at most maxBlockQuads quads a side, >= 4) and
   // the error table. Returns "" on success or the reason it failed (the engine is then empty).
   std::string setHeightfield(Heightfield hf, int maxBlockQuads = 64, int threads = 0);
 

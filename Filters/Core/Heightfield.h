@@ -2,7 +2,7 @@
 //
 // Sample (i, j) sits at world (x0 + i*dx, y0 + j*dy) with height z[j*nx + i]. Any size
 // nx x ny >= 2 x 2 is accepted (no 2^k+1 rule). Nodata is NaN; +-Inf is treated as nodata
-// too (see makeHeightfield). Negative spacing flips an axis; the engine keeps triangles
+// too (see infinitiesToNodata). Negative spacing flips an axis; the engine keeps triangles
 // counter-clockwise seen from +z in world coordinates either way.
 #pragma once
 
