@@ -1,0 +1,240 @@
+// Core engine benchmark (Google Benchmark): LOD update along a deterministic low-altitude
+// flight versus full-resolution index generation, and a block-size sweep.
+//
+//   build-c/Testing/Benchmarks/bench_core                          # 1025^2 and 4097^2
+//   GEOMIPMAP_BENCH_MAX=16385 build-c/Testing/Benchmarks/bench_core # adds 16385^2 (~1 GB)
+//   GEOMIPMAP_BENCH_THREADS=1 ...                                  # table build threads (0 = all)
+//
+// Scene: synthetic terrain (gmm::makeSyntheticTerrain, 30 m spacing, seed 42), camera flying
+// a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
+// ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
+// tau = 1 px. Each benchmark iteration is one frame (Engine::update: cull + select +
+// tessellate, single thread); the flight loops after kFlightFrames frames.
+#include "Engine.h"
+#include "SyntheticTerrain.h"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr double kSpacing = 30.0;
+constexpr int kFlightFrames = 2000;
+constexpr double kStep = 5.0;      // metres per frame
+constexpr double kAltitude = 200.0; // metres above the ground under/ahead of the camera
+
+double seconds(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int envInt(const char* name, int fallback)
+{
+  const char* v = std::getenv(name);
+  return v && *v ? std::atoi(v) : fallback;
+}
+
+double groundAt(const gmm::Heightfield& hf, double x, double y)
+{
+  int i = static_cast<int>(std::lround((x - hf.x0) / hf.dx));
+  int j = static_cast<int>(std::lround((y - hf.y0) / hf.dy));
+  i = std::max(0, std::min(hf.nx - 1, i));
+  j = std::max(0, std::min(hf.ny - 1, j));
+  const float z = hf.height(i, j);
+  return std::isfinite(z) ? z : 0.0;
+}
+
+std::vector<gmm::View> makeFlight(const gmm::Heightfield& hf)
+{
+  std::vector<gmm::View> path;
+  const double ext = (hf.nx - 1) * hf.dx;
+  const double dir[2] = { std::sqrt(0.5), std::sqrt(0.5) };
+  const double x0 = hf.x0 + 0.3 * ext, y0 = hf.y0 + 0.3 * ext;
+  const double pitch = -15.0 * 3.14159265358979323846 / 180.0;
+  for (int f = 0; f < kFlightFrames; ++f)
+  {
+    gmm::View v;
+    const double x = x0 + dir[0] * kStep * f, y = y0 + dir[1] * kStep * f;
+    double ground = 0;
+    for (double ahead = 0; ahead <= 600; ahead += 60)
+      ground = std::max(ground, groundAt(hf, x + dir[0] * ahead, y + dir[1] * ahead));
+    v.eye = { x, y, ground + kAltitude };
+    v.forward = { dir[0] * std::cos(pitch), dir[1] * std::cos(pitch), std::sin(pitch) };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 60;
+    v.viewportWidth = 1280;
+    v.viewportHeight = 720;
+    v.nearDistance = 1.0;
+    v.farDistance = 1e6;
+    path.push_back(v);
+  }
+  return path;
+}
+
+struct Scene
+{
+  std::unique_ptr<gmm::Engine> engine;
+  std::vector<gmm::View> flight;
+  double generateSeconds = 0, tableSeconds = 0;
+  double fullResSeconds = 0; // one full-resolution index generation
+  std::size_t fullResTriangles = 0;
+};
+
+// Full-resolution index generation: the obvious alternative to LOD.
+std::size_t fullResolutionIndices(const gmm::Heightfield& hf, std::vector<uint32_t>& out)
+{
+  const std::size_t tris = 2 * static_cast<std::size_t>(hf.nx - 1) * (hf.ny - 1);
+  out.resize(3 * tris);
+  uint32_t* p = out.data();
+  const uint32_t nx = static_cast<uint32_t>(hf.nx);
+  const bool flip = hf.mirrored();
+  for (uint32_t j = 0; j + 1 < static_cast<uint32_t>(hf.ny); ++j)
+    for (uint32_t i = 0; i + 1 < nx; ++i)
+    {
+      const uint32_t a = j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
+      if (!flip)
+      {
+        *p++ = a; *p++ = b; *p++ = c;
+        *p++ = a; *p++ = c; *p++ = d;
+      }
+      else
+      {
+        *p++ = a; *p++ = c; *p++ = b;
+        *p++ = a; *p++ = d; *p++ = c;
+      }
+    }
+  return tris;
+}
+
+Scene& scene(int size, int blockQuads)
+{
+  static std::map<std::pair<int, int>, Scene> cache;
+  auto key = std::make_pair(size, blockQuads);
+  auto it = cache.find(key);
+  if (it != cache.end())
+    return it->second;
+  // keep memory bounded: one scene at a time
+  cache.clear();
+  Scene& s = cache[key];
+  const int threads = envInt("GEOMIPMAP_BENCH_THREADS", 0);
+  auto t0 = std::chrono::steady_clock::now();
+  gmm::Heightfield hf = gmm::makeSyntheticTerrain(size, size, kSpacing, 42, 1500.0, threads);
+  s.generateSeconds = seconds(t0);
+  {
+    std::vector<uint32_t> full;
+    t0 = std::chrono::steady_clock::now();
+    s.fullResTriangles = fullResolutionIndices(hf, full);
+    benchmark::DoNotOptimize(full.data());
+    s.fullResSeconds = seconds(t0);
+  }
+  s.flight = makeFlight(hf);
+  s.engine = std::make_unique<gmm::Engine>();
+  t0 = std::chrono::steady_clock::now();
+  const std::string err = s.engine->setHeightfield(std::move(hf), blockQuads, threads);
+  s.tableSeconds = seconds(t0);
+  if (!err.empty())
+    std::fprintf(stderr, "setHeightfield failed: %s\n", err.c_str());
+  std::fprintf(stderr, "# %d^2 block %d: terrain %.2f s, quadtree + error table %.2f s, full-res indices %.3f s\n",
+    size, blockQuads, s.generateSeconds, s.tableSeconds, s.fullResSeconds);
+  return s;
+}
+
+void runFlight(benchmark::State& state, int size, int blockQuads)
+{
+  Scene& s = scene(size, blockQuads);
+  gmm::Engine& e = *s.engine;
+  std::size_t frame = 0, triangles = 0, reused = 0, visible = 0, regenFrames = 0;
+  double maxErr = 0, totalUs = 0, regenUs = 0;
+  // warm up one frame so the first measured frame is not a cold start
+  e.update(s.flight[0], 1.0);
+  for (auto _ : state)
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    const gmm::FrameStats& st = e.update(s.flight[frame % s.flight.size()], 1.0);
+    benchmark::DoNotOptimize(e.indices().data());
+    const double us = seconds(t0) * 1e6;
+    totalUs += us;
+    if (!st.reused)
+    {
+      regenUs += us;
+      ++regenFrames;
+    }
+    triangles += st.triangles;
+    reused += st.reused ? 1 : 0;
+    visible += st.visibleBlocks;
+    maxErr = std::max(maxErr, st.maxScreenError);
+    ++frame;
+  }
+  const double n = static_cast<double>(frame);
+  state.counters["frame_us"] = totalUs / n;
+  state.counters["regen_frame_us"] = regenFrames ? regenUs / regenFrames : 0.0;
+  state.counters["triangles"] = triangles / n;
+  state.counters["tris_per_us"] = triangles / totalUs;
+  state.counters["reused_frac"] = reused / n;
+  state.counters["visible_blocks"] = visible / n;
+  state.counters["max_px_err"] = maxErr;
+  state.counters["table_build_s"] = s.tableSeconds;
+  state.counters["fullres_ms"] = s.fullResSeconds * 1e3;
+  state.counters["fullres_tris"] = static_cast<double>(s.fullResTriangles);
+}
+
+void BM_FullResolutionIndices(benchmark::State& state)
+{
+  const int size = static_cast<int>(state.range(0));
+  Scene& s = scene(size, 64);
+  std::vector<uint32_t> out;
+  std::size_t tris = 0;
+  for (auto _ : state)
+  {
+    tris = fullResolutionIndices(s.engine->heightfield(), out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["triangles"] = static_cast<double>(tris);
+  state.counters["ms_per_generation"] = benchmark::Counter(
+    state.iterations() * 1e-3, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  benchmark::Initialize(&argc, argv);
+  const int maxSize = envInt("GEOMIPMAP_BENCH_MAX", 4097);
+  std::vector<int> sizes;
+  for (int s : { 1025, 4097, 16385 })
+    if (s <= maxSize)
+      sizes.push_back(s);
+  // Per size: the LOD flight, then the full-resolution alternative on the same DEM (the
+  // scene cache keeps one DEM at a time, so order the registrations by size).
+  for (int s : sizes)
+  {
+    benchmark::RegisterBenchmark(("BM_LodFlight/" + std::to_string(s)).c_str(),
+      [s](benchmark::State& st) { runFlight(st, s, 64); })
+      ->Unit(benchmark::kMicrosecond)
+      ->UseRealTime()
+      ->MinTime(2.0);
+    benchmark::RegisterBenchmark(("BM_FullResolutionIndices/" + std::to_string(s)).c_str(), BM_FullResolutionIndices)
+      ->Arg(s)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(s >= 16385 ? 1 : 3);
+  }
+  if (envInt("GEOMIPMAP_BENCH_SWEEP", 1))
+    for (int bq : { 16, 32, 64, 128, 256 })
+      benchmark::RegisterBenchmark(("BM_BlockSizeSweep4097/" + std::to_string(bq)).c_str(),
+        [bq](benchmark::State& st) { runFlight(st, 4097, bq); })
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime()
+        ->MinTime(2.0);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

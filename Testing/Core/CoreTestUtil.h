@@ -1,0 +1,431 @@
+// Shared helpers for the engine tests. Everything here is written from first principles:
+// no helper calls the engine's error, tessellation or projection code, so the tests that
+// use them check the engine independently of the code that makes the claims.
+#pragma once
+
+#include "Heightfield.h"
+#include "Quadtree.h"
+#include "View.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gmmtest
+{
+
+using Rng = std::mt19937_64;
+
+inline int randInt(Rng& rng, int lo, int hi) // inclusive
+{
+  return std::uniform_int_distribution<int>(lo, hi)(rng);
+}
+inline double randReal(Rng& rng, double lo, double hi)
+{
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+// Rough terrain: smooth base + white noise + spikes + steps. Deliberately nasty for LOD.
+inline gmm::Heightfield roughTerrain(int nx, int ny, Rng& rng, double spacingX = 10.0,
+  double spacingY = 10.0, double amplitude = 300.0, double maxNoise = 0.1)
+{
+  gmm::Heightfield hf;
+  hf.nx = nx;
+  hf.ny = ny;
+  hf.dx = spacingX;
+  hf.dy = spacingY;
+  hf.x0 = randReal(rng, -1000.0, 1000.0);
+  hf.y0 = randReal(rng, -1000.0, 1000.0);
+  hf.z.resize(static_cast<std::size_t>(nx) * ny);
+  const double fx = randReal(rng, 0.01, 0.2), fy = randReal(rng, 0.01, 0.2);
+  const double noise = amplitude * randReal(rng, 0.0, maxNoise);
+  const int stepCol = randInt(rng, 0, nx - 1);
+  const double stepH = randReal(rng, -0.5, 0.5) * amplitude;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+    {
+      double h = amplitude * 0.5 * (std::sin(fx * i) * std::cos(fy * j) + 1.0);
+      h += noise * u(rng);
+      if (i >= stepCol)
+        h += stepH;
+      hf.z[hf.index(i, j)] = static_cast<float>(h);
+    }
+  const int spikes = randInt(rng, 0, 1 + nx * ny / 500);
+  for (int s = 0; s < spikes; ++s)
+  {
+    int i = randInt(rng, 0, nx - 1), j = randInt(rng, 0, ny - 1);
+    hf.z[hf.index(i, j)] += static_cast<float>(randReal(rng, -1.0, 1.0) * amplitude);
+  }
+  return hf;
+}
+
+// Valid levels of a block, from Levels.h's rules restated here (not the engine's code).
+inline bool refLevelValid(int w, int h, int m)
+{
+  const long long s = 1LL << m;
+  if (s < w && s < h)
+    return true; // ring
+  if (s >= w && s >= h)
+    return true; // one quad
+  if (m == 0 && (w == 1 || h == 1))
+    return true; // thin
+  return false;
+}
+inline int refTopLevel(int w, int h)
+{
+  int side = std::max(w, h), m = 0;
+  while ((1LL << m) < side)
+    ++m;
+  return m;
+}
+
+// Reference recursive halving (Quadtree.h): first half = floor(q / 2).
+inline void refSplit(int start, int quads, int maxQuads, std::vector<int>& starts)
+{
+  if (quads <= maxQuads)
+  {
+    starts.push_back(start);
+    return;
+  }
+  const int a = quads / 2;
+  refSplit(start, a, maxQuads, starts);
+  refSplit(start + a, quads - a, maxQuads, starts);
+}
+inline std::vector<int> refSplitBands(int quads, int maxQuads)
+{
+  std::vector<int> s;
+  refSplit(0, quads, maxQuads, s);
+  s.push_back(quads);
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------
+// Mesh invariants, exact integer arithmetic in grid (i, j) coordinates.
+struct MeshCheckOptions
+{
+  // Per block: drawn or not. Empty = all drawn.
+  std::vector<bool> drawn;
+  bool allowNodataHoles = false; // boundary edges may also border cells touching NaN
+  bool checkArea = true;         // area sum == drawn area (only without NaN)
+};
+
+struct MeshCheckResult
+{
+  std::string error; // empty when all invariants hold
+  long long doubledArea = 0;
+  std::size_t triangles = 0;
+};
+
+inline long long cross2(long long ax, long long ay, long long bx, long long by)
+{
+  return ax * by - ay * bx;
+}
+
+// Checks the triangle list `idx` over the heightfield `hf` split into blocks by `qt` bands.
+inline MeshCheckResult checkMesh(const gmm::Heightfield& hf, const std::vector<int>& colStart,
+  const std::vector<int>& rowStart, const std::vector<uint32_t>& idx, const MeshCheckOptions& opt)
+{
+  MeshCheckResult res;
+  std::ostringstream err;
+  auto fail = [&](const std::string& s) {
+    if (res.error.empty())
+      res.error = s;
+  };
+  const int nx = hf.nx, ny = hf.ny;
+  const long long nv = static_cast<long long>(nx) * ny;
+  if (idx.size() % 3 != 0)
+  {
+    fail("index count not a multiple of 3");
+    return res;
+  }
+  res.triangles = idx.size() / 3;
+  const int blockCols = static_cast<int>(colStart.size()) - 1;
+  const int blockRows = static_cast<int>(rowStart.size()) - 1;
+  // cell -> band lookups
+  std::vector<int> colOfCell(std::max(nx - 1, 0)), rowOfCell(std::max(ny - 1, 0));
+  for (int c = 0; c < blockCols; ++c)
+    for (int i = colStart[c]; i < colStart[c + 1]; ++i)
+      colOfCell[i] = c;
+  for (int r = 0; r < blockRows; ++r)
+    for (int j = rowStart[r]; j < rowStart[r + 1]; ++j)
+      rowOfCell[j] = r;
+  auto cellDrawn = [&](int ci, int cj) -> bool {
+    if (ci < 0 || cj < 0 || ci >= nx - 1 || cj >= ny - 1)
+      return false;
+    if (!opt.drawn.empty() && !opt.drawn[rowOfCell[cj] * blockCols + colOfCell[ci]])
+      return false;
+    if (opt.allowNodataHoles)
+    {
+      for (int dj = 0; dj <= 1; ++dj)
+        for (int di = 0; di <= 1; ++di)
+          if (!std::isfinite(hf.height(ci + di, cj + dj)))
+            return false;
+    }
+    return true;
+  };
+
+  const bool mirrored = (hf.dx < 0) != (hf.dy < 0);
+  std::vector<uint8_t> used(static_cast<std::size_t>(nv), 0);
+  std::vector<uint64_t> directed;
+  directed.reserve(idx.size());
+  std::vector<std::array<uint32_t, 3>> canon;
+  canon.reserve(res.triangles);
+  for (std::size_t t = 0; t < res.triangles; ++t)
+  {
+    uint32_t v[3] = { idx[3 * t], idx[3 * t + 1], idx[3 * t + 2] };
+    bool inRange = true;
+    for (uint32_t x : v)
+      if (static_cast<long long>(x) >= nv)
+        inRange = false;
+    if (!inRange)
+    {
+      fail("index out of range in triangle " + std::to_string(t));
+      return res;
+    }
+    for (uint32_t x : v)
+      used[x] = 1;
+    long long i0 = v[0] % nx, j0 = v[0] / nx, i1 = v[1] % nx, j1 = v[1] / nx, i2 = v[2] % nx,
+              j2 = v[2] / nx;
+    long long a2 = cross2(i1 - i0, j1 - j0, i2 - i0, j2 - j0);
+    if (a2 == 0)
+    {
+      fail("zero-area triangle " + std::to_string(t));
+      continue;
+    }
+    // world orientation: grid area sign times sign(dx*dy)
+    const bool ccwWorld = mirrored ? (a2 < 0) : (a2 > 0);
+    if (!ccwWorld)
+    {
+      std::ostringstream s;
+      s << "triangle " << t << " (" << i0 << "," << j0 << ")(" << i1 << "," << j1 << ")(" << i2
+        << "," << j2 << ") is clockwise seen from +z in world coordinates";
+      fail(s.str());
+    }
+    res.doubledArea += std::llabs(a2);
+    for (int e = 0; e < 3; ++e)
+      directed.push_back((static_cast<uint64_t>(v[e]) << 32) | v[(e + 1) % 3]);
+    std::array<uint32_t, 3> c{ v[0], v[1], v[2] };
+    std::sort(c.begin(), c.end());
+    canon.push_back(c);
+  }
+  std::sort(canon.begin(), canon.end());
+  if (std::adjacent_find(canon.begin(), canon.end()) != canon.end())
+    fail("duplicate triangle");
+  std::sort(directed.begin(), directed.end());
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end())
+    fail("directed edge used twice (overlap or fold)");
+  for (uint64_t e : directed)
+  {
+    uint32_t a = static_cast<uint32_t>(e >> 32), b = static_cast<uint32_t>(e);
+    uint64_t rev = (static_cast<uint64_t>(b) << 32) | a;
+    long long ia = a % nx, ja = a / nx, ib = b % nx, jb = b / nx;
+    // T-junction: no used vertex strictly inside the segment (lattice points only).
+    long long di = ib - ia, dj = jb - ja;
+    long long g = std::gcd(std::llabs(di), std::llabs(dj));
+    for (long long k = 1; k < g; ++k)
+    {
+      long long pi = ia + k * di / g, pj = ja + k * dj / g;
+      if (used[static_cast<std::size_t>(pj * nx + pi)])
+      {
+        std::ostringstream s;
+        s << "T-junction: vertex (" << pi << "," << pj << ") lies inside edge (" << ia << ","
+          << ja << ")-(" << ib << "," << jb << ")";
+        fail(s.str());
+        break;
+      }
+    }
+    if (std::binary_search(directed.begin(), directed.end(), rev))
+      continue; // interior edge with opposite orientation
+    // boundary edge: must be axis-aligned and every unit piece must separate a drawn cell
+    // from an undrawn/outside one.
+    bool ok = true;
+    if (ia == ib)
+    {
+      for (long long j = std::min(ja, jb); j < std::max(ja, jb) && ok; ++j)
+        if (cellDrawn(static_cast<int>(ia - 1), static_cast<int>(j)) &&
+          cellDrawn(static_cast<int>(ia), static_cast<int>(j)))
+          ok = false;
+    }
+    else if (ja == jb)
+    {
+      for (long long i = std::min(ia, ib); i < std::max(ia, ib) && ok; ++i)
+        if (cellDrawn(static_cast<int>(i), static_cast<int>(ja - 1)) &&
+          cellDrawn(static_cast<int>(i), static_cast<int>(ja)))
+          ok = false;
+    }
+    else
+      ok = false;
+    if (!ok && opt.allowNodataHoles)
+    {
+      // around holes any edge may be a border: accept it when a cell touching its
+      // midpoint is not drawn (outside, undrawn block, or touching nodata)
+      const double mx = 0.5 * (ia + ib), my = 0.5 * (ja + jb);
+      for (int cj = static_cast<int>(std::ceil(my)) - 1; cj <= static_cast<int>(std::floor(my)); ++cj)
+        for (int ci = static_cast<int>(std::ceil(mx)) - 1; ci <= static_cast<int>(std::floor(mx)); ++ci)
+          if (!cellDrawn(ci, cj))
+            ok = true;
+    }
+    if (!ok)
+    {
+      std::ostringstream s;
+      s << "boundary edge (" << ia << "," << ja << ")-(" << ib << "," << jb
+        << ") used once but not on the border of the drawn region";
+      fail(s.str());
+    }
+  }
+  if (opt.checkArea)
+  {
+    long long expected = 0;
+    for (int r = 0; r < blockRows; ++r)
+      for (int c = 0; c < blockCols; ++c)
+        if (opt.drawn.empty() || opt.drawn[r * blockCols + c])
+          expected += 2LL * (colStart[c + 1] - colStart[c]) * (rowStart[r + 1] - rowStart[r]);
+    if (expected != res.doubledArea)
+      fail("doubled area " + std::to_string(res.doubledArea) + " != drawn region's " +
+        std::to_string(expected));
+  }
+  return res;
+}
+
+// ---------------------------------------------------------------------------------------
+// Drawn surface under every sample: rasterise each triangle over lattice points (exact
+// integer inside test) and interpolate z barycentrically in double from the float heights.
+struct SurfaceSample
+{
+  std::vector<double> z;        // NaN where no triangle covers the sample
+  std::vector<uint8_t> covered; // number of covering triangles (capped at 255)
+  double maxDisagreement = 0.0; // between triangles sharing a sample (edges/vertices)
+};
+
+inline SurfaceSample sampleSurface(const gmm::Heightfield& hf, const std::vector<uint32_t>& idx)
+{
+  SurfaceSample s;
+  const int nx = hf.nx;
+  s.z.assign(hf.z.size(), std::numeric_limits<double>::quiet_NaN());
+  s.covered.assign(hf.z.size(), 0);
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3)
+  {
+    long long I[3], J[3];
+    double Z[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      I[k] = idx[t + k] % nx;
+      J[k] = idx[t + k] / nx;
+      Z[k] = static_cast<double>(hf.z[idx[t + k]]);
+    }
+    long long area = cross2(I[1] - I[0], J[1] - J[0], I[2] - I[0], J[2] - J[0]);
+    if (area == 0)
+      continue;
+    long long imin = std::min({ I[0], I[1], I[2] }), imax = std::max({ I[0], I[1], I[2] });
+    long long jmin = std::min({ J[0], J[1], J[2] }), jmax = std::max({ J[0], J[1], J[2] });
+    for (long long j = jmin; j <= jmax; ++j)
+      for (long long i = imin; i <= imax; ++i)
+      {
+        long long w0 = cross2(I[2] - I[1], J[2] - J[1], i - I[1], j - J[1]);
+        long long w1 = cross2(I[0] - I[2], J[0] - J[2], i - I[2], j - J[2]);
+        long long w2 = cross2(I[1] - I[0], J[1] - J[0], i - I[0], j - J[0]);
+        if (area < 0)
+        {
+          w0 = -w0;
+          w1 = -w1;
+          w2 = -w2;
+        }
+        if (w0 < 0 || w1 < 0 || w2 < 0)
+          continue;
+        const double a = static_cast<double>(std::llabs(area));
+        const double z = (w0 * Z[0] + w1 * Z[1] + w2 * Z[2]) / a;
+        const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+        if (s.covered[k] == 0)
+          s.z[k] = z;
+        else
+          s.maxDisagreement = std::max(s.maxDisagreement, std::fabs(s.z[k] - z));
+        if (s.covered[k] < 255)
+          ++s.covered[k];
+      }
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------
+// Projection written from the definition in View.h (not the engine's code).
+struct MyCamera
+{
+  double ex, ey, ez;
+  double f[3], r[3], u[3];
+  double scale; // pixels per unit at depth 1 (perspective) or everywhere (parallel)
+  bool parallel;
+  double nearD, farD;
+  int W, H;
+};
+
+inline MyCamera makeCamera(const gmm::View& v)
+{
+  MyCamera c{};
+  c.ex = v.eye.x;
+  c.ey = v.eye.y;
+  c.ez = v.eye.z;
+  double fl = std::sqrt(v.forward.x * v.forward.x + v.forward.y * v.forward.y +
+    v.forward.z * v.forward.z);
+  c.f[0] = v.forward.x / fl;
+  c.f[1] = v.forward.y / fl;
+  c.f[2] = v.forward.z / fl;
+  // right = f x up, normalised; true up = right x f
+  double rx = c.f[1] * v.up.z - c.f[2] * v.up.y;
+  double ry = c.f[2] * v.up.x - c.f[0] * v.up.z;
+  double rz = c.f[0] * v.up.y - c.f[1] * v.up.x;
+  double rl = std::sqrt(rx * rx + ry * ry + rz * rz);
+  c.r[0] = rx / rl;
+  c.r[1] = ry / rl;
+  c.r[2] = rz / rl;
+  c.u[0] = c.r[1] * c.f[2] - c.r[2] * c.f[1];
+  c.u[1] = c.r[2] * c.f[0] - c.r[0] * c.f[2];
+  c.u[2] = c.r[0] * c.f[1] - c.r[1] * c.f[0];
+  c.parallel = v.parallel;
+  const double halfH = 0.5 * v.viewportHeight;
+  const double pi = 3.14159265358979323846;
+  c.scale = v.parallel ? halfH / v.parallelScale : halfH / std::tan(v.fovYDegrees * pi / 360.0);
+  c.nearD = v.nearDistance;
+  c.farD = v.farDistance;
+  c.W = v.viewportWidth;
+  c.H = v.viewportHeight;
+  return c;
+}
+
+// Returns depth along forward; px, py in pixels (origin lower-left, y up).
+inline double project(const MyCamera& c, double x, double y, double z, double& px, double& py)
+{
+  const double p[3] = { x - c.ex, y - c.ey, z - c.ez };
+  const double d = p[0] * c.f[0] + p[1] * c.f[1] + p[2] * c.f[2];
+  const double a = p[0] * c.r[0] + p[1] * c.r[1] + p[2] * c.r[2];
+  const double b = p[0] * c.u[0] + p[1] * c.u[1] + p[2] * c.u[2];
+  if (c.parallel)
+  {
+    px = 0.5 * c.W + c.scale * a;
+    py = 0.5 * c.H + c.scale * b;
+  }
+  else
+  {
+    px = 0.5 * c.W + c.scale * a / d;
+    py = 0.5 * c.H + c.scale * b / d;
+  }
+  return d;
+}
+
+inline bool insideFrustum(const MyCamera& c, double x, double y, double z)
+{
+  double px, py;
+  const double d = project(c, x, y, z, px, py);
+  if (!(d >= c.nearD && d <= c.farD))
+    return false;
+  return px >= 0.0 && px <= c.W && py >= 0.0 && py <= c.H;
+}
+
+} // namespace gmmtest

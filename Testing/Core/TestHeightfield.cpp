@@ -1,0 +1,164 @@
+// Heightfield validation and Inf -> nodata conversion (Heightfield.h), and that the engine
+// refuses what validation refuses.
+#include "CoreTestUtil.h"
+#include "Engine.h"
+#include "Heightfield.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+gmm::Heightfield flat(int nx, int ny, double dx = 1.0, double dy = 1.0)
+{
+  gmm::Heightfield hf;
+  hf.nx = nx;
+  hf.ny = ny;
+  hf.dx = dx;
+  hf.dy = dy;
+  if (nx > 0 && ny > 0)
+    hf.z.assign(static_cast<std::size_t>(nx) * ny, 1.0f);
+  return hf;
+}
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+} // namespace
+
+TEST(Heightfield, RejectsTooSmall)
+{
+  EXPECT_FALSE(gmm::validateHeightfield(flat(1, 5)).empty());
+  EXPECT_FALSE(gmm::validateHeightfield(flat(5, 1)).empty());
+  EXPECT_FALSE(gmm::validateHeightfield(flat(0, 5)).empty());
+  EXPECT_FALSE(gmm::validateHeightfield(flat(5, 0)).empty());
+  EXPECT_FALSE(gmm::validateHeightfield(flat(1, 1)).empty());
+  EXPECT_FALSE(gmm::validateHeightfield(flat(0, 0)).empty());
+  gmm::Heightfield neg = flat(3, 3);
+  neg.nx = -3; // negative size with a (wrong) count
+  EXPECT_FALSE(gmm::validateHeightfield(neg).empty());
+}
+
+TEST(Heightfield, RejectsMismatchedHeightCount)
+{
+  gmm::Heightfield hf = flat(4, 5);
+  hf.z.pop_back();
+  EXPECT_FALSE(gmm::validateHeightfield(hf).empty());
+  hf = flat(4, 5);
+  hf.z.push_back(0.f);
+  EXPECT_FALSE(gmm::validateHeightfield(hf).empty());
+  hf = flat(4, 5);
+  hf.z.clear();
+  EXPECT_FALSE(gmm::validateHeightfield(hf).empty());
+}
+
+TEST(Heightfield, RejectsBadSpacingAndOrigin)
+{
+  for (double bad : { 0.0, -0.0, kNaN, kInf, -kInf })
+  {
+    EXPECT_FALSE(gmm::validateHeightfield(flat(3, 3, bad, 1.0)).empty()) << "dx=" << bad;
+    EXPECT_FALSE(gmm::validateHeightfield(flat(3, 3, 1.0, bad)).empty()) << "dy=" << bad;
+  }
+  for (double bad : { kNaN, kInf, -kInf })
+  {
+    gmm::Heightfield hf = flat(3, 3);
+    hf.x0 = bad;
+    EXPECT_FALSE(gmm::validateHeightfield(hf).empty()) << "x0=" << bad;
+    hf = flat(3, 3);
+    hf.y0 = bad;
+    EXPECT_FALSE(gmm::validateHeightfield(hf).empty()) << "y0=" << bad;
+  }
+}
+
+TEST(Heightfield, AcceptsArbitrarySizes)
+{
+  const int sizes[][2] = { { 2, 2 }, { 2, 17 }, { 17, 2 }, { 2, 1000 }, { 1000, 37 }, { 37, 1000 },
+    { 3, 3 }, { 7, 13 }, { 97, 101 }, { 257, 2 }, { 65, 65 }, { 64, 64 } };
+  for (auto& s : sizes)
+    EXPECT_TRUE(gmm::validateHeightfield(flat(s[0], s[1])).empty()) << s[0] << "x" << s[1];
+  // negative spacing flips an axis and is fine
+  EXPECT_TRUE(gmm::validateHeightfield(flat(5, 4, -2.0, 3.0)).empty());
+  EXPECT_TRUE(gmm::validateHeightfield(flat(5, 4, -2.0, -3.0)).empty());
+  // nodata is allowed, also everywhere
+  gmm::Heightfield hf = flat(5, 4);
+  for (float& z : hf.z)
+    z = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(gmm::validateHeightfield(hf).empty());
+}
+
+TEST(Heightfield, EngineReturnsValidationError)
+{
+  gmm::Engine e;
+  EXPECT_FALSE(e.setHeightfield(flat(1, 9)).empty());
+  EXPECT_TRUE(e.empty());
+  EXPECT_FALSE(e.setHeightfield(flat(3, 3, 0.0, 1.0)).empty());
+  EXPECT_TRUE(e.empty());
+  gmm::Heightfield bad = flat(4, 4);
+  bad.z.resize(15);
+  EXPECT_FALSE(e.setHeightfield(bad).empty());
+  EXPECT_TRUE(e.empty());
+  // block size below 2 is refused too (Engine.h: >= 2)
+  EXPECT_FALSE(e.setHeightfield(flat(9, 9), 1).empty());
+  EXPECT_TRUE(e.empty());
+  EXPECT_FALSE(e.setHeightfield(flat(9, 9), 0).empty());
+  EXPECT_TRUE(e.empty());
+  // a good one, then a bad one empties the engine
+  EXPECT_TRUE(e.setHeightfield(flat(9, 9), 4).empty());
+  EXPECT_FALSE(e.empty());
+  EXPECT_FALSE(e.setHeightfield(flat(0, 9)).empty());
+  EXPECT_TRUE(e.empty());
+  // an empty engine survives frames
+  gmm::View v;
+  v.eye = { 4, -10, 5 };
+  const gmm::FrameStats& s = e.update(v, 1.0);
+  EXPECT_EQ(s.triangles, 0u);
+  EXPECT_TRUE(e.indices().empty());
+  EXPECT_EQ(e.updateForError(0.0).triangles, 0u);
+}
+
+TEST(Heightfield, InfinitiesBecomeNodata)
+{
+  gmm::Heightfield hf = flat(4, 3);
+  hf.z[1] = std::numeric_limits<float>::infinity();
+  hf.z[5] = -std::numeric_limits<float>::infinity();
+  hf.z[7] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(gmm::infinitiesToNodata(hf), 2u);
+  EXPECT_TRUE(std::isnan(hf.z[1]));
+  EXPECT_TRUE(std::isnan(hf.z[5]));
+  EXPECT_TRUE(std::isnan(hf.z[7]));
+  for (int k : { 0, 2, 3, 4, 6, 8, 9, 10, 11 })
+    EXPECT_EQ(hf.z[k], 1.0f);
+  EXPECT_EQ(gmm::infinitiesToNodata(hf), 0u);
+}
+
+// Heightfield.h: "+-Inf is treated as nodata too": the engine must never emit a triangle
+// that references an infinite sample.
+TEST(Heightfield, EngineTreatsInfinityAsNodata)
+{
+  gmm::Heightfield hf = flat(9, 9);
+  const int infAt = 4 * 9 + 4, negInfAt = 1 * 9 + 7;
+  hf.z[infAt] = std::numeric_limits<float>::infinity();
+  hf.z[negInfAt] = -std::numeric_limits<float>::infinity();
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 4), "");
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    if (pass == 0)
+      e.updateForError(0.0);
+    else
+    {
+      gmm::View v;
+      v.eye = { 4, -20, 20 };
+      v.forward = { 0, 1, -0.5 };
+      e.update(v, 1.0);
+    }
+    EXPECT_GT(e.indices().size(), 0u);
+    for (uint32_t k : e.indices())
+    {
+      EXPECT_NE(k, static_cast<uint32_t>(infAt));
+      EXPECT_NE(k, static_cast<uint32_t>(negInfAt));
+    }
+    for (uint32_t k : e.indices())
+      ASSERT_TRUE(std::isfinite(e.heightfield().z[k]));
+  }
+}

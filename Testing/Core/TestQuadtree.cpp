@@ -1,0 +1,207 @@
+// Quadtree bands, leaves and boxes (Quadtree.h), and the level rules (Levels.h) checked
+// against a restatement of the header's rules.
+#include "CoreTestUtil.h"
+#include "Levels.h"
+#include "Quadtree.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace gmmtest;
+
+TEST(Quadtree, SplitBandsCoverAndRespectMax)
+{
+  for (int maxQ = 2; maxQ <= 70; ++maxQ)
+    for (int q = 1; q <= 600; ++q)
+    {
+      std::vector<int> b = gmm::splitBands(q, maxQ);
+      ASSERT_GE(b.size(), 2u);
+      EXPECT_EQ(b.front(), 0);
+      EXPECT_EQ(b.back(), q);
+      for (std::size_t k = 0; k + 1 < b.size(); ++k)
+      {
+        EXPECT_GT(b[k + 1], b[k]) << "q=" << q << " max=" << maxQ;
+        EXPECT_LE(b[k + 1] - b[k], maxQ) << "q=" << q << " max=" << maxQ;
+      }
+      // recursive halving, rounding down (first half = floor(q/2))
+      ASSERT_EQ(b, refSplitBands(q, maxQ)) << "q=" << q << " max=" << maxQ;
+    }
+  EXPECT_EQ(gmm::splitBands(64, 64), (std::vector<int>{ 0, 64 }));
+  EXPECT_EQ(gmm::splitBands(65, 64), (std::vector<int>{ 0, 32, 65 }));
+  EXPECT_EQ(gmm::splitBands(129, 64), (std::vector<int>{ 0, 64, 96, 129 }));
+  EXPECT_EQ(gmm::splitBands(7, 3), (std::vector<int>{ 0, 3, 5, 7 }));
+}
+
+namespace
+{
+bool boxContains(const gmm::Box& outer, const gmm::Box& inner)
+{
+  return outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.lo.z <= inner.lo.z &&
+    outer.hi.x >= inner.hi.x && outer.hi.y >= inner.hi.y && outer.hi.z >= inner.hi.z;
+}
+bool boxContainsPoint(const gmm::Box& b, double x, double y, double z)
+{
+  return b.lo.x <= x && x <= b.hi.x && b.lo.y <= y && y <= b.hi.y && b.lo.z <= z && z <= b.hi.z;
+}
+
+void checkTree(const gmm::Heightfield& hf, int maxQ)
+{
+  SCOPED_TRACE(std::to_string(hf.nx) + "x" + std::to_string(hf.ny) + " max " +
+    std::to_string(maxQ) + " dx " + std::to_string(hf.dx) + " dy " + std::to_string(hf.dy));
+  gmm::Quadtree qt = gmm::buildQuadtree(hf, maxQ);
+  // Quadtree.h: a block size below 4 is raised to 4 (no 1-quad band inside a wider DEM)
+  const int effMax = std::max(4, maxQ);
+  ASSERT_EQ(qt.colStart, refSplitBands(hf.nx - 1, effMax));
+  ASSERT_EQ(qt.rowStart, refSplitBands(hf.ny - 1, effMax));
+  for (std::size_t k = 0; k + 1 < qt.colStart.size(); ++k)
+    EXPECT_TRUE(qt.colStart[k + 1] - qt.colStart[k] >= 2 || hf.nx == 2) << "1-quad column band";
+  for (std::size_t k = 0; k + 1 < qt.rowStart.size(); ++k)
+    EXPECT_TRUE(qt.rowStart[k + 1] - qt.rowStart[k] >= 2 || hf.ny == 2) << "1-quad row band";
+  ASSERT_EQ(qt.blockCols + 1, static_cast<int>(qt.colStart.size()));
+  ASSERT_EQ(qt.blockRows + 1, static_cast<int>(qt.rowStart.size()));
+  ASSERT_EQ(static_cast<int>(qt.blockBox.size()), qt.blockCount());
+  ASSERT_EQ(static_cast<int>(qt.blockHasNodata.size()), qt.blockCount());
+  ASSERT_FALSE(qt.nodes.empty());
+
+  // every block: its box contains its samples (borders included), z tight over valid ones
+  for (int r = 0; r < qt.blockRows; ++r)
+    for (int c = 0; c < qt.blockCols; ++c)
+    {
+      const int b = qt.blockIndex(c, r);
+      const gmm::Box& box = qt.blockBox[b];
+      bool anyNaN = false;
+      double zlo = std::numeric_limits<double>::infinity(), zhi = -zlo;
+      for (int j = qt.rowStart[r]; j <= qt.rowStart[r + 1]; ++j)
+        for (int i = qt.colStart[c]; i <= qt.colStart[c + 1]; ++i)
+        {
+          const float z = hf.height(i, j);
+          const double x = hf.worldX(i), y = hf.worldY(j);
+          EXPECT_TRUE(box.lo.x <= x && x <= box.hi.x && box.lo.y <= y && y <= box.hi.y)
+            << "block " << b << " sample " << i << "," << j;
+          if (std::isnan(z))
+          {
+            anyNaN = true;
+            continue;
+          }
+          zlo = std::min(zlo, double(z));
+          zhi = std::max(zhi, double(z));
+          EXPECT_TRUE(boxContainsPoint(box, x, y, z)) << "block " << b << " sample " << i << "," << j;
+        }
+      EXPECT_EQ(qt.blockHasNodata[b] != 0, anyNaN) << "block " << b;
+      if (zlo <= zhi)
+      {
+        EXPECT_EQ(box.lo.z, zlo) << "block " << b << " box z not tight";
+        EXPECT_EQ(box.hi.z, zhi) << "block " << b << " box z not tight";
+      }
+    }
+
+  // nodes: each leaf names one block, each block has exactly one leaf, parents contain children
+  std::vector<int> leafOf(qt.blockCount(), 0);
+  std::vector<int> parentCount(qt.nodes.size(), 0);
+  for (std::size_t n = 0; n < qt.nodes.size(); ++n)
+  {
+    const gmm::QuadtreeNode& node = qt.nodes[n];
+    if (node.childCount == 0)
+    {
+      ASSERT_GE(node.block, 0);
+      ASSERT_LT(node.block, qt.blockCount());
+      ++leafOf[node.block];
+      EXPECT_TRUE(boxContains(node.box, qt.blockBox[node.block])) << "leaf " << n;
+      continue;
+    }
+    ASSERT_GT(node.firstChild, static_cast<int>(n));
+    ASSERT_LE(node.firstChild + node.childCount, static_cast<int>(qt.nodes.size()));
+    for (int k = 0; k < node.childCount; ++k)
+    {
+      ++parentCount[node.firstChild + k];
+      EXPECT_TRUE(boxContains(node.box, qt.nodes[node.firstChild + k].box))
+        << "node " << n << " child " << node.firstChild + k;
+    }
+  }
+  for (int b = 0; b < qt.blockCount(); ++b)
+    EXPECT_EQ(leafOf[b], 1) << "block " << b;
+  EXPECT_EQ(parentCount[0], 0);
+  for (std::size_t n = 1; n < qt.nodes.size(); ++n)
+    EXPECT_EQ(parentCount[n], 1) << "node " << n;
+}
+} // namespace
+
+TEST(Quadtree, LeavesTileAndBoxesContain)
+{
+  Rng rng(7);
+  const int sizes[][2] = { { 2, 2 }, { 2, 40 }, { 40, 2 }, { 3, 3 }, { 65, 65 }, { 66, 67 },
+    { 131, 17 }, { 300, 211 }, { 97, 101 } };
+  for (auto& s : sizes)
+    for (int maxQ : { 2, 3, 4, 7, 16, 64, 1000 })
+    {
+      gmm::Heightfield hf = roughTerrain(s[0], s[1], rng, 5.0, 7.0);
+      checkTree(hf, maxQ);
+      hf.dx = -hf.dx;
+      checkTree(hf, maxQ);
+      hf.dy = -3.0;
+      // sprinkle some nodata
+      for (int k = 0; k < 5; ++k)
+        hf.z[randInt(rng, 0, static_cast<int>(hf.z.size()) - 1)] =
+          std::numeric_limits<float>::quiet_NaN();
+      checkTree(hf, maxQ);
+    }
+}
+
+TEST(Quadtree, TinyAndOversizedBlocks)
+{
+  Rng rng(3);
+  gmm::Heightfield hf = roughTerrain(2, 2, rng);
+  gmm::Quadtree qt = gmm::buildQuadtree(hf, 64);
+  EXPECT_EQ(qt.blockCount(), 1);
+  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 1 }));
+  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 1 }));
+  hf = roughTerrain(50, 33, rng);
+  qt = gmm::buildQuadtree(hf, 64);
+  EXPECT_EQ(qt.blockCount(), 1);
+  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 49 }));
+  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 32 }));
+}
+
+TEST(Levels, ShapesAndTopLevelMatchRules)
+{
+  for (int w = 1; w <= 80; ++w)
+    for (int h = 1; h <= 80; ++h)
+    {
+      EXPECT_EQ(gmm::topLevel(w, h), refTopLevel(w, h)) << w << "x" << h;
+      for (int m = 0; m <= refTopLevel(w, h) + 1; ++m)
+      {
+        const long long s = 1LL << m;
+        gmm::BlockShape expect = gmm::BlockShape::Invalid;
+        if (s < w && s < h)
+          expect = gmm::BlockShape::Ring;
+        else if (s >= w && s >= h)
+          expect = gmm::BlockShape::OneQuad;
+        else if (m == 0 && (w == 1 || h == 1))
+          expect = gmm::BlockShape::Thin;
+        if (m > refTopLevel(w, h))
+          continue; // above the top level: not specified
+        EXPECT_EQ(gmm::blockShape(w, h, m), expect) << w << "x" << h << " level " << m;
+      }
+    }
+}
+
+TEST(Levels, EdgeSamples)
+{
+  std::vector<int> out;
+  for (int first = 0; first < 5; ++first)
+    for (int len = 1; len <= 70; ++len)
+      for (int m = 0; m <= 8; ++m)
+      {
+        const int last = first + len;
+        std::vector<int> expect;
+        for (int k = first; k < last; k += (1 << m))
+          expect.push_back(k);
+        expect.push_back(last);
+        out.clear();
+        gmm::edgeSamples(first, last, m, out);
+        EXPECT_EQ(out, expect) << first << ".." << last << " level " << m;
+        EXPECT_EQ(gmm::edgeSampleCount(first, last, m), static_cast<int>(expect.size()));
+      }
+}
