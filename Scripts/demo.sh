@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# The main job: sets up and builds, then flies over the built-in synthetic terrain,
+# rendering off-screen (under xvfb-run when there is no display), and writes PNG frames,
+# a per-frame CSV and a summary. Extra arguments go to geomipmap-fly.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+build=${GEOMIPMAP_BUILD_DIR:-$here/build}
+bash "$here/Scripts/setup.sh"
+run=()
+[ -n "${DISPLAY:-}" ] || run=(xvfb-run -a -s "-screen 0 1920x1080x24")
+"${run[@]}" "$build/bin/geomipmap-fly" --out "${GEOMIPMAP_DEMO_OUT:-$PWD/geomipmap-flight}" "$@"
