@@ -1,0 +1,170 @@
+"""Rendering for geomipmap-fly: window, LOD mapper, colouring, lights, timed frames.
+
+Why: keeps every VTK rendering detail (off-screen vs. window, sky, sun, colour map or
+texture, how a frame's render time is measured, PNG output) away from the CLI and path
+code. Render time is the wall time of Render() plus WaitForCompletion() (a glFinish), so
+the GPU/llvmpipe work is counted, not just the command submission.
+"""
+
+import os
+import time
+
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkRenderingCore import (
+    vtkActor,
+    vtkColorTransferFunction,
+    vtkLight,
+    vtkRenderer,
+    vtkRenderWindow,
+    vtkTexture,
+    vtkWindowToImageFilter,
+)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (OpenGL factory overrides)
+import vtkmodules.vtkInteractionStyle  # noqa: F401
+
+from .errors import FlyError
+
+# Hypsometric tints: fraction of the height range -> RGB (lowland green .. snow).
+TERRAIN_COLOURS = (
+    (0.00, (0.20, 0.42, 0.22)),
+    (0.15, (0.33, 0.55, 0.27)),
+    (0.35, (0.62, 0.64, 0.38)),
+    (0.55, (0.60, 0.48, 0.33)),
+    (0.75, (0.52, 0.45, 0.42)),
+    (0.90, (0.85, 0.85, 0.85)),
+    (1.00, (1.00, 1.00, 1.00)),
+)
+
+
+class Scene:
+    """One renderer with the terrain actor, driven frame by frame."""
+
+    def __init__(self, image, heights, args, messages):
+        import geomipmap
+
+        self.args = args
+        self.messages = messages
+        self.mapper = geomipmap.vtkGeoMipMapMapper()
+        self.mapper.SetInputData(image)
+        self.mapper.SetBlockSize(args.block_size)
+        self.mapper.SetPixelError(args.tau)
+        self.actor = vtkActor()
+        self.actor.SetMapper(self.mapper)
+        self._colour(heights)
+        prop = self.actor.GetProperty()
+        if args.no_lighting:
+            prop.LightingOff()
+        else:
+            prop.SetAmbient(0.25)
+            prop.SetDiffuse(0.8)
+            prop.SetSpecular(0.0)
+
+        self.renderer = vtkRenderer()
+        self.renderer.AddActor(self.actor)
+        self.renderer.GradientBackgroundOn()  # sky: hazy horizon below, deeper blue above
+        self.renderer.SetBackground(0.78, 0.86, 0.95)
+        self.renderer.SetBackground2(0.30, 0.50, 0.80)
+        self.renderer.SetNearClippingPlaneTolerance(0.0005)  # low flights: near plane close
+        if not args.no_lighting:
+            self._sun()
+
+        self.window = vtkRenderWindow()
+        self.window.SetSize(*args.size)
+        self.window.AddRenderer(self.renderer)
+        self.window.SetWindowName("geomipmap-fly")
+        self.window.SetMultiSamples(0)
+        self.window.SetOffScreenRendering(0 if args.interactive else 1)
+        self.grab = None
+
+    def _colour(self, heights):
+        spec = self.args.color
+        if spec == "elevation":
+            ctf = vtkColorTransferFunction()
+            lo, hi = heights.zmin, max(heights.zmax, heights.zmin + 1e-3)
+            for frac, rgb in TERRAIN_COLOURS:
+                ctf.AddRGBPoint(lo + frac * (hi - lo), *rgb)
+            self.mapper.SetLookupTable(ctf)
+            self.mapper.SetScalarRange(lo, hi)
+            self.mapper.SetColorModeToMapScalars()
+            self.mapper.ScalarVisibilityOn()
+            return
+        path = spec.split(":", 1)[1]
+        if not os.path.isfile(path):
+            raise FlyError(f"texture image not found: {path}")
+        reader = vtkPNGReader()
+        if not reader.CanReadFile(path):
+            raise FlyError(f"texture is not a PNG image: {path}")
+        self.messages.observe(reader)
+        reader.SetFileName(path)
+        reader.Update()
+        dims = reader.GetOutput().GetDimensions()
+        if self.messages.first_error() or dims[0] < 1 or dims[1] < 1:
+            raise FlyError(f"cannot read texture {path}: {self.messages.first_error()}")
+        tex = vtkTexture()
+        tex.SetInputConnection(reader.GetOutputPort())
+        tex.InterpolateOn()
+        tex.MipmapOn()
+        self.texture_reader = reader
+        self.actor.SetTexture(tex)
+        self.mapper.ScalarVisibilityOff()
+
+    def _sun(self):
+        """A sun from the north-west, 40 degrees up (relief reads as in a shaded map)."""
+        self.renderer.AutomaticLightCreationOff()
+        sun = vtkLight()
+        sun.SetLightTypeToSceneLight()
+        sun.SetPositional(False)
+        sun.SetPosition(-0.55, 0.55, 0.63)
+        sun.SetFocalPoint(0.0, 0.0, 0.0)
+        sun.SetIntensity(1.0)
+        self.renderer.AddLight(sun)
+
+    def set_camera(self, position, focal):
+        cam = self.renderer.GetActiveCamera()
+        cam.SetPosition(*position)
+        cam.SetFocalPoint(*focal)
+        cam.SetViewUp(0.0, 0.0, 1.0)
+        cam.SetViewAngle(self.args.view_angle)
+        self.renderer.ResetCameraClippingRange()
+
+    def render(self):
+        """Render one frame; return (render_ms, lod_ms, stats dict)."""
+        t0 = time.perf_counter()
+        self.window.Render()
+        self.window.WaitForCompletion()
+        render_ms = (time.perf_counter() - t0) * 1000.0
+        m = self.mapper
+        stats = {
+            "lod_ms": m.GetLastUpdateTime() * 1000.0,
+            "render_ms": render_ms,
+            "triangles": int(m.GetNumberOfRenderedTriangles()),
+            "visible_blocks": int(m.GetNumberOfVisibleBlocks()),
+            "culled_blocks": int(m.GetNumberOfCulledBlocks()),
+            "certified_error_px": float(m.GetMaximumScreenSpaceError()),
+            "reused": bool(m.GetIndicesReused()),
+        }
+        return stats
+
+    def write_png(self, filename):
+        if self.grab is None:
+            self.grab = vtkWindowToImageFilter()
+            self.grab.SetInput(self.window)
+            self.grab.ReadFrontBufferOff()
+            self.grab.ShouldRerenderOff()
+            self.png = vtkPNGWriter()
+            self.png.SetInputConnection(self.grab.GetOutputPort())
+        self.grab.Modified()
+        self.png.SetFileName(filename)
+        self.png.Write()
+
+    def interact(self):
+        """Hand the window to the user with a terrain interactor (after the flight)."""
+        from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTerrain
+        from vtkmodules.vtkRenderingCore import vtkRenderWindowInteractor
+
+        iren = vtkRenderWindowInteractor()
+        iren.SetRenderWindow(self.window)
+        iren.SetInteractorStyle(vtkInteractorStyleTerrain())
+        iren.Initialize()
+        self.window.Render()
+        iren.Start()

@@ -1,0 +1,164 @@
+"""Terrain input for geomipmap-fly: load a DEM (or the synthetic terrain), sample it.
+
+Why a separate module: the flight path needs ground heights under the camera (terrain
+following) and a geographic -> local-metre conversion that must agree exactly with what
+vtkGeoMipMapTerrainReader did to the raster; both depend only on the image, not on
+rendering.
+"""
+
+import math
+import os
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from .errors import FlyError, one_line
+
+
+def load_terrain(args, messages):
+    """Run the reader (--dem) or the fractal source; return the vtkImageData.
+
+    Raises FlyError with one line for a missing / unreadable file or an empty image.
+    """
+    import geomipmap  # noqa: deferred so that --help works without the compiled package
+
+    if args.dem:
+        if not os.path.isfile(args.dem):
+            raise FlyError(f"DEM file not found: {args.dem}")
+        if not os.access(args.dem, os.R_OK):
+            raise FlyError(f"DEM file not readable: {args.dem}")
+        algo = geomipmap.vtkGeoMipMapTerrainReader()
+        algo.SetFileName(args.dem)
+        algo.SetHeightScale(args.height_scale)
+        if args.spacing is not None:
+            algo.SetSpacing(args.spacing)
+        algo.SetTerrainRGB(1 if args.terrain_rgb else 0)
+        what = f"cannot read DEM {args.dem}"
+    else:
+        algo = geomipmap.vtkGeoMipMapFractalSource()
+        algo.SetDimensions(args.synthetic_size, args.synthetic_size)
+        algo.SetSpacing(args.spacing if args.spacing is not None else 30.0)
+        algo.SetSeed(args.seed)
+        what = "synthetic terrain failed"
+    messages.observe(algo)
+    ok = algo.GetExecutive().Update()
+    image = algo.GetOutput()
+    err = messages.first_error()
+    dims = image.GetDimensions() if image is not None else (0, 0, 0)
+    if not ok or err or dims[0] < 2 or dims[1] < 2:
+        if err and args.dem and args.dem in err:
+            raise FlyError(err)  # the reader's message names the file already
+        raise FlyError(f"{what}: {err or 'no elevation samples in the output'}")
+    image = image.NewInstance()
+    image.ShallowCopy(algo.GetOutput())
+    heights = Heights(image)
+    if not np.isfinite(heights.z).any():
+        raise FlyError(f"{what}: every sample is nodata")
+    return image, heights
+
+
+def field_string(image, name):
+    """A string field-data array's first value, or None."""
+    arr = image.GetFieldData().GetAbstractArray(name)
+    if arr is None or arr.GetNumberOfValues() == 0:
+        return None
+    try:
+        return one_line(arr.GetValue(0))
+    except (AttributeError, TypeError):
+        return None
+
+
+class Heights:
+    """The image's elevation grid as numpy, with bilinear sampling in world x, y.
+
+    z[j, i] is the height of the sample at x = ox + i * dx, y = oy + j * dy (j northwards).
+    NaN (nodata) samples are left out of the interpolation; a point with no finite
+    neighbour gets NaN, which callers fill from the path's neighbours.
+    """
+
+    def __init__(self, image):
+        nx, ny, _ = image.GetDimensions()
+        scalars = image.GetPointData().GetScalars()
+        if scalars is None:
+            raise FlyError("terrain image has no elevation scalars")
+        self.z = vtk_to_numpy(scalars).astype(np.float64).reshape(ny, nx)
+        self.nx, self.ny = nx, ny
+        self.ox, self.oy, _ = image.GetOrigin()
+        self.dx, self.dy, _ = image.GetSpacing()
+        finite = self.z[np.isfinite(self.z)]
+        self.zmin = float(finite.min()) if finite.size else 0.0
+        self.zmax = float(finite.max()) if finite.size else 0.0
+
+    @property
+    def bounds(self):
+        """(xmin, xmax, ymin, ymax) of the sample positions."""
+        return (self.ox, self.ox + (self.nx - 1) * self.dx,
+                self.oy, self.oy + (self.ny - 1) * self.dy)
+
+    def contains(self, x, y):
+        xmin, xmax, ymin, ymax = self.bounds
+        return xmin <= x <= xmax and ymin <= y <= ymax
+
+    def sample(self, x, y):
+        """Bilinear heights at arrays x, y (clamped to the grid); NaN where all 4 are nodata."""
+        fx = np.clip((np.asarray(x, float) - self.ox) / self.dx, 0, self.nx - 1)
+        fy = np.clip((np.asarray(y, float) - self.oy) / self.dy, 0, self.ny - 1)
+        i0 = np.minimum(np.floor(fx).astype(int), self.nx - 2)
+        j0 = np.minimum(np.floor(fy).astype(int), self.ny - 2)
+        tx, ty = fx - i0, fy - j0
+        num = np.zeros_like(fx)
+        den = np.zeros_like(fx)
+        for di, dj, w in ((0, 0, (1 - tx) * (1 - ty)), (1, 0, tx * (1 - ty)),
+                          (0, 1, (1 - tx) * ty), (1, 1, tx * ty)):
+            v = self.z[j0 + dj, i0 + di]
+            ok = np.isfinite(v)
+            num += np.where(ok, v, 0.0) * w
+            den += np.where(ok, w, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = np.where(den > 1e-12, num / np.maximum(den, 1e-12), np.nan)
+        return out
+
+
+class GeoFrame:
+    """Geographic (lon, lat) -> the reader's local metric frame, from its field data.
+
+    The reader (see vtkGeoMipMapTerrainReader.h) puts (0, 0) at the south-west sample
+    (lon0, lat0) = field "GeographicOrigin" and uses, with lat_c the latitude of the DEM's
+    centre and M, N the WGS84 meridional / prime-vertical radii (GeographicLib's
+    ellipsoid): x = (lon - lon0) * pi/180 * N(lat_c) * cos(lat_c),
+    y = (lat - lat0) * pi/180 * M(lat_c). lat_c is recovered from the image: the
+    north-south extent H (metres) spans H / M(lat_c) radians, solved by fixed point.
+    """
+
+    def __init__(self, image, heights):
+        arr = image.GetFieldData().GetArray("GeographicOrigin")
+        if arr is None or arr.GetNumberOfValues() < 2:
+            raise FlyError("waypoints are geographic (lon/lat) but the DEM has no geographic "
+                           "origin (not a lon/lat raster); give local x,y in metres")
+        from geographiclib.geodesic import Geodesic
+
+        self.lon0, self.lat0 = arr.GetValue(0), arr.GetValue(1)
+        self.a, self.f = Geodesic.WGS84.a, Geodesic.WGS84.f
+        ox, oy = heights.ox, heights.oy  # the reader's origin (0, 0) unless it changes
+        self.ox, self.oy = ox, oy
+        half = 0.5 * (heights.ny - 1) * heights.dy
+        lat_c = self.lat0
+        for _ in range(8):
+            lat_c = self.lat0 + math.degrees(half / self.radii(lat_c)[0])
+        self.lat_c = lat_c
+        m, n = self.radii(lat_c)
+        self.kx = math.radians(1.0) * n * math.cos(math.radians(lat_c))
+        self.ky = math.radians(1.0) * m
+
+    def radii(self, lat_deg):
+        """(M, N): WGS84 meridional and prime-vertical radii of curvature at lat_deg."""
+        e2 = self.f * (2 - self.f)
+        s2 = math.sin(math.radians(lat_deg)) ** 2
+        w = math.sqrt(1 - e2 * s2)
+        return self.a * (1 - e2) / w ** 3, self.a / w
+
+    def to_local(self, lon, lat):
+        return (self.ox + (lon - self.lon0) * self.kx, self.oy + (lat - self.lat0) * self.ky)
+
+    def to_geographic(self, x, y):
+        return (self.lon0 + (x - self.ox) / self.kx, self.lat0 + (y - self.oy) / self.ky)

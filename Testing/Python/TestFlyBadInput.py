@@ -1,0 +1,80 @@
+"""geomipmap-fly on bad input: every case exits non-zero with ONE line on stderr.
+
+Missing / empty / garbage DEM files, a DEM the reader refuses, waypoints outside the
+terrain or malformed, and nonsense option values. No case may print a traceback or VTK's
+multi-line error dumps.
+"""
+
+import os
+
+from flytestutil import check, run, setup
+
+exe, out = setup()
+garbage = os.path.join(out, "garbage.tif")
+with open(garbage, "wb") as f:
+    f.write(b"this is not a raster\n" * 10)
+empty = os.path.join(out, "empty.hgt")
+open(empty, "wb").close()
+outside = os.path.join(out, "outside.csv")
+with open(outside, "w") as f:
+    f.write("x,y,agl\n100,100,50\n1e7,100,50\n")
+nocols = os.path.join(out, "nocols.csv")
+with open(nocols, "w") as f:
+    f.write("a,b\n1,2\n3,4\n")
+notnum = os.path.join(out, "notnum.csv")
+with open(notnum, "w") as f:
+    f.write("x,y,z\n100,100,abc\n200,200,300\n")
+badjson = os.path.join(out, "bad.json")
+with open(badjson, "w") as f:
+    f.write("{not json")
+geo_on_synth = os.path.join(out, "geo.csv")
+with open(geo_on_synth, "w") as f:
+    f.write("lon,lat,agl\n1.0,42.1,100\n1.1,42.2,100\n")
+
+small = ["--synthetic-size", "65", "--frames", "2", "--size", "64x64", "--out",
+         os.path.join(out, "o")]
+cases = {
+    "missing DEM": ["--dem", os.path.join(out, "nope.tif")],
+    "garbage DEM": ["--dem", garbage],
+    "empty DEM": ["--dem", empty],
+    "waypoint outside": ["--waypoints", outside] + small,
+    "waypoint columns": ["--waypoints", nocols] + small,
+    "waypoint not numeric": ["--waypoints", notnum] + small,
+    "waypoint bad JSON": ["--waypoints", badjson] + small,
+    "lon/lat on synthetic": ["--waypoints", geo_on_synth] + small,
+    "missing waypoints": ["--waypoints", os.path.join(out, "nope.csv")],
+    "tau -1": ["--tau", "-1"],
+    "tau nan": ["--tau", "nan"],
+    "size 0x5": ["--size", "0x5"],
+    "size junk": ["--size", "big"],
+    "frames 0": ["--frames", "0"],
+    "frames and seconds": ["--frames", "3", "--seconds", "2"],
+    "seconds 0": ["--seconds", "0"],
+    "block size 48": ["--block-size", "48"],
+    "pitch 100": ["--pitch", "100"],
+    "every 0": ["--every", "0"],
+    "synthetic size 1": ["--synthetic-size", "1"],
+    "path spiral": ["--path", "spiral"],
+    "unknown option": ["--bogus"],
+    "missing texture": ["--color", "texture:" + os.path.join(out, "nope.png")] + small,
+    "colour name": ["--color", "rainbow"],
+}
+data = os.environ.get("GEOMIPMAP_DATA_DIR") or os.environ.get("GEOMIPMAP_DATA", "")
+rgb = os.path.join(data, "fuji_terrain_rgb.png")
+if os.path.isfile(rgb):
+    cases["RGB PNG without --terrain-rgb"] = ["--dem", rgb] + small[2:]
+
+failures = []
+for name, args in cases.items():
+    if "--out" not in args:
+        args = args + ["--out", os.path.join(out, "o")]
+    rc, so, se = run(exe, *args, timeout=120)
+    lines = [ln for ln in se.splitlines() if ln.strip()]
+    ok = (rc != 0 and len(lines) == 1 and "Traceback" not in se
+          and lines[0].startswith("geomipmap-fly: error:"))
+    print(f"{'ok  ' if ok else 'FAIL'} {name}: rc {rc}: {se.strip()[:160]!r}")
+    if not ok:
+        failures.append(name)
+check(not failures, f"{len(failures)} case(s) failed: {', '.join(failures)}")
+check(not os.path.exists(os.path.join(out, "o")), "a failed run created its output folder")
+print(f"TestFlyBadInput: passed ({len(cases)} cases)")

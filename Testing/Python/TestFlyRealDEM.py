@@ -1,0 +1,108 @@
+"""geomipmap-fly over a real DEM with geographic (lon, lat, agl) waypoints.
+
+Uses mt_rainier_90m.tif (SRTM3 N46W122, EPSG:4326, voids) from the shared data folder
+($GEOMIPMAP_DATA_DIR, default ../shared/data next to the repository); skips (exit 77)
+when it is absent. Checks: exit 0, 10 CSV rows, certified error <= tau on every frame,
+frames showing terrain; the lon/lat -> local metre conversion against GeographicLib's
+geodesic distances; JSON waypoints with absolute altitudes; a waypoint outside the tile.
+"""
+
+import glob
+import json
+import os
+import sys
+
+from flytestutil import SKIP, check, png_stats, read_csv, run, setup
+
+exe, out = setup()
+here = os.path.dirname(os.path.abspath(__file__))
+data = (os.environ.get("GEOMIPMAP_DATA_DIR") or os.environ.get("GEOMIPMAP_DATA")
+        or os.path.join(here, "..", "..", "..", "shared", "data"))
+dem = os.path.join(data, "mt_rainier_90m.tif")
+if not os.path.isfile(dem):
+    print(f"SKIP: {dem} not found (set GEOMIPMAP_DATA_DIR to the shared data folder)")
+    sys.exit(SKIP)
+
+# The tile spans lon -122 .. -121, lat 46 .. 47; Mount Rainier's summit is near
+# (-121.760, 46.853). A flight from the south-west past the summit, 700 m above ground.
+wp = os.path.join(out, "rainier.csv")
+with open(wp, "w") as f:
+    f.write("# lon, lat in degrees (WGS 84); agl: metres above the ground under the camera\n")
+    f.write("lon,lat,agl\n-121.95,46.70,700\n-121.82,46.78,700\n-121.66,46.88,900\n"
+            "-121.55,46.95,700\n")
+tau = "1.5"
+rc, so, se = run(exe, "--dem", dem, "--waypoints", wp, "--frames", "10", "--size", "320x180",
+                 "--tau", tau, "--out", os.path.join(out, "csv"))
+check(rc == 0, f"exit {rc}: {se.strip()}")
+rows = read_csv(os.path.join(out, "csv", "flight.csv"))
+check(len(rows) == 10, f"expected 10 rows, got {len(rows)}")
+for r in rows:
+    e = float(r["certified_error_px"])
+    check(0.0 <= e <= float(tau) + 1e-9, f"frame {r['frame']}: certified error {e} > tau {tau}")
+    check(int(r["triangles"]) > 0, f"frame {r['frame']}: no triangles")
+pngs = sorted(glob.glob(os.path.join(out, "csv", "frame_*.png")))
+check(len(pngs) == 10, f"expected 10 PNGs, got {len(pngs)}")
+_, _, var, terrain = png_stats(pngs[0])
+check(var > 20.0 and terrain > 0.3, f"{pngs[0]}: variance {var:.1f}, terrain {terrain:.0%}")
+check("within tau" in so, f"summary does not certify the error:\n{so}")
+
+# Conversion check: the flight's frame-0 position is the first waypoint; compare the local
+# frame with GeographicLib geodesics between two waypoints (equirectangular: < 0.2 %).
+try:
+    import geomipmap  # noqa: F401 (PYTHONPATH from CTest)
+    import numpy as np
+    from geographiclib.geodesic import Geodesic
+    from geomipmap_fly import terrain
+except ImportError as e:
+    print(f"note: conversion check skipped ({e})")
+else:
+    rd = geomipmap.vtkGeoMipMapTerrainReader()
+    rd.SetFileName(dem)
+    rd.Update()
+    img = rd.GetOutput()
+    frame = terrain.GeoFrame(img, terrain.Heights(img))
+    x0, y0 = frame.to_local(frame.lon0, frame.lat0)
+    check(abs(x0 - img.GetOrigin()[0]) < 1e-6 and abs(y0 - img.GetOrigin()[1]) < 1e-6,
+          "GeographicOrigin does not map to the image origin")
+    # Exactly the reader's frame: the north-east sample (1 degree on) lands on the last one.
+    nx, ny, _ = img.GetDimensions()
+    dx, dy, _ = img.GetSpacing()
+    xe, ye = frame.to_local(frame.lon0 + 1.0, frame.lat0 + 1.0)
+    check(abs(xe - (nx - 1) * dx) < 1e-6 * xe and abs(ye - (ny - 1) * dy) < 1e-6 * ye,
+          f"north-east corner maps to ({xe:.3f}, {ye:.3f}), image says "
+          f"({(nx - 1) * dx:.3f}, {(ny - 1) * dy:.3f})")
+    # Against GeographicLib's geodesic: the frame is equirectangular about the tile's centre
+    # latitude, so east-west distances away from it are off by up to ~1 % on a 1-degree tile.
+    (xa, ya), (xb, yb) = frame.to_local(-121.95, 46.70), frame.to_local(-121.55, 46.95)
+    geo = Geodesic.WGS84.Inverse(46.70, -121.95, 46.95, -121.55)["s12"]
+    local = ((xb - xa) ** 2 + (yb - ya) ** 2) ** 0.5
+    check(abs(local - geo) / geo < 1e-2, f"local distance {local:.1f} m vs geodesic {geo:.1f} m")
+    # Terrain following: the camera stays at least the clearance above the ground.
+    from geomipmap_fly import paths
+    hts = terrain.Heights(img)
+    flight = paths.Flight(paths.read_waypoints(wp, img, hts, None), hts, 200, 15.0)
+    ground = hts.sample(flight.positions[:, 0], flight.positions[:, 1])
+    ok = ~np.isnan(ground)
+    low = float((flight.positions[ok, 2] - ground[ok]).min())
+    check(low >= 700.0 - 1.0, f"camera {low:.1f} m above ground, clearance 700")
+    lon, lat = frame.to_geographic(xa, ya)
+    check(abs(lon + 121.95) < 1e-9 and abs(lat - 46.70) < 1e-9, "round trip lon/lat")
+
+# JSON, absolute altitudes (metres above the DEM's datum), higher than the summit.
+wj = os.path.join(out, "rainier.json")
+with open(wj, "w") as f:
+    json.dump({"waypoints": [{"lon": -121.9, "lat": 46.6, "alt": 5200},
+                             {"lon": -121.6, "lat": 46.9, "alt": 5200}]}, f)
+rc, so, se = run(exe, "--dem", dem, "--waypoints", wj, "--frames", "3", "--size", "160x90",
+                 "--no-frames", "--out", os.path.join(out, "json"))
+check(rc == 0, f"JSON waypoints: exit {rc}: {se.strip()}")
+check(len(read_csv(os.path.join(out, "json", "flight.csv"))) == 3, "JSON flight rows")
+
+# A waypoint outside the tile: one line, non-zero.
+with open(wp, "a") as f:
+    f.write("-120.50,46.95,700\n")
+rc, so, se = run(exe, "--dem", dem, "--waypoints", wp, "--frames", "2", "--out",
+                 os.path.join(out, "outside"))
+check(rc != 0 and "outside the terrain" in se and len(se.strip().splitlines()) == 1,
+      f"outside waypoint: rc {rc}, stderr {se!r}")
+print("TestFlyRealDEM: passed")

@@ -1,0 +1,45 @@
+"""geomipmap-fly on the built-in synthetic terrain: the README's demo, shrunk.
+
+Checks: exit 0, a CSV with one row per frame and sane values, PNG frames that are not
+blank and show terrain under a sky, the summary table on stdout; then a line flight with
+terrain following (--clearance) and --every / --seconds.
+"""
+
+import glob
+import os
+
+from flytestutil import check, png_stats, read_csv, run, setup
+
+exe, out = setup()
+d1 = os.path.join(out, "orbit")
+rc, so, se = run(exe, "--frames", "10", "--size", "320x180", "--synthetic-size", "257",
+                 "--out", d1)
+check(rc == 0, f"orbit flight exited {rc}: {se.strip()}")
+check("Traceback" not in se, "traceback on stderr")
+rows = read_csv(os.path.join(d1, "flight.csv"))
+check(len(rows) == 10, f"expected 10 CSV rows, got {len(rows)}")
+check([int(r["frame"]) for r in rows] == list(range(10)), "frame numbers")
+for r in rows:
+    check(int(r["triangles"]) > 0, f"frame {r['frame']}: no triangles")
+    check(float(r["render_ms"]) > 0, f"frame {r['frame']}: render_ms")
+    check(float(r["certified_error_px"]) <= 1.0 + 1e-9, f"frame {r['frame']}: error > tau")
+    check(r["reused"] in ("yes", "no"), "reused column")
+pngs = sorted(glob.glob(os.path.join(d1, "frame_*.png")))
+check(len(pngs) == 10, f"expected 10 PNGs, got {len(pngs)}")
+for p in (pngs[0], pngs[5]):
+    w, h, var, terrain = png_stats(p)
+    check((w, h) == (320, 180), f"{p}: size {w}x{h}")
+    check(var > 20.0, f"{p}: blank image (variance {var:.1f})")
+    check(0.2 < terrain < 0.98, f"{p}: terrain covers {terrain:.0%} (expected land and sky)")
+for word in ("median", "p95", "LOD update", "render", "triangles", "certified error",
+             "indices reused", "CSV:", "frames:"):
+    check(word in so, f"summary lacks {word!r}:\n{so}")
+
+d2 = os.path.join(out, "line")
+rc, so, se = run(exe, "--path", "line", "--clearance", "150", "--seconds", "1", "--fps", "8",
+                 "--every", "4", "--size", "200x120", "--synthetic-size", "129", "--tau", "2",
+                 "--out", d2)
+check(rc == 0, f"line flight exited {rc}: {se.strip()}")
+check(len(read_csv(os.path.join(d2, "flight.csv"))) == 8, "--seconds 1 --fps 8: 8 rows")
+check(len(glob.glob(os.path.join(d2, "frame_*.png"))) == 2, "--every 4 of 8: 2 PNGs")
+print("TestFlySynthetic: passed")
