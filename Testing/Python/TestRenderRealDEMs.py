@@ -1,0 +1,94 @@
+"""Regression images of real DEMs through vtkGeoMipMapTerrainReader + vtkGeoMipMapMapper.
+
+Cases: Puget Sound (16-bit PNG, 0.1 m units, 160 m spacing) and Mt Rainier (GeoTIFF, lon/lat,
+9033 voids that must render as holes). Each renders off-screen at tau = 1 px with an elevation
+lookup table and lighting, checks the frame's certified error, and compares the picture with
+Data/Baseline/TestRender<Case>.png (VTK's image comparison). GEOMIPMAP_WRITE_BASELINE=1 writes
+the baseline instead (look at it before committing it).
+"""
+import os
+import sys
+
+import geomipmap
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkCommonCore import vtkLookupTable
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
+                                         vtkWindowToImageFilter)
+from vtkmodules.test import Testing
+
+here = os.path.dirname(os.path.abspath(__file__))
+baselines = os.path.join(here, "..", "..", "Data", "Baseline")
+data = os.environ.get("GEOMIPMAP_DATA", "")
+CASES = {
+    "Puget": ("ps_height_1k.png", dict(HeightScale=0.1, Spacing=160.0), (0.0, 4379.8)),
+    "Rainier": ("mt_rainier_90m.tif", {}, (263.0, 4371.0)),
+}
+
+
+def render(case):
+    name, options, (zmin, zmax) = CASES[case]
+    path = os.path.join(data, name)
+    if not os.path.exists(path):
+        return None
+    reader = geomipmap.vtkGeoMipMapTerrainReader()
+    reader.SetFileName(path)
+    for key, value in options.items():
+        getattr(reader, "Set" + key)(value)
+    mapper = geomipmap.vtkGeoMipMapMapper()
+    mapper.SetInputConnection(reader.GetOutputPort())
+    mapper.SetPixelError(1.0)
+    lut = vtkLookupTable()
+    lut.SetHueRange(0.33, 0.0)
+    lut.SetSaturationRange(0.6, 0.0)
+    lut.SetValueRange(0.45, 1.0)
+    lut.Build()
+    mapper.SetLookupTable(lut)
+    mapper.SetScalarRange(zmin, zmax)
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.SetScale(1.0, 1.0, 2.0)  # vertical exaggeration, as users do for relief
+    ren = vtkRenderer()
+    ren.AddActor(actor)
+    ren.SetBackground(0.1, 0.1, 0.2)
+    win = vtkRenderWindow()
+    win.AddRenderer(ren)
+    win.SetOffScreenRendering(1)
+    win.SetSize(400, 300)
+    ren.ResetCamera()
+    cam = ren.GetActiveCamera()
+    cam.Elevation(-60)
+    cam.Zoom(1.4)
+    ren.ResetCameraClippingRange()
+    win.Render()
+    error = mapper.GetMaximumScreenSpaceError()
+    triangles = mapper.GetNumberOfRenderedTriangles()
+    print("%s: %d triangles, certified error %.3f px" % (case, triangles, error))
+    assert triangles > 0
+    assert error <= 1.0 + 1e-9, error
+    return win
+
+
+def main():
+    skipped = 0
+    for case in CASES:
+        win = render(case)
+        if win is None:
+            print("SKIP: %s not found in GEOMIPMAP_DATA=%r" % (CASES[case][0], data))
+            skipped += 1
+            continue
+        baseline = os.path.join(baselines, "TestRender%s.png" % case)
+        if os.environ.get("GEOMIPMAP_WRITE_BASELINE"):
+            shot = vtkWindowToImageFilter()
+            shot.SetInput(win)
+            writer = vtkPNGWriter()
+            writer.SetInputConnection(shot.GetOutputPort())
+            writer.SetFileName(baseline)
+            writer.Write()
+            continue
+        Testing.compareImage(win, baseline, threshold=10)
+    return 77 if skipped == len(CASES) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
