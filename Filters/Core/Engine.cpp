@@ -107,8 +107,7 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
   for (int b = 0; b < qt_.blockCount(); ++b)
   {
     const int m = levels[b];
-    const int c = b % qt_.blockCols, r = b / qt_.blockCols;
-    const int w = qt_.colStart[c + 1] - qt_.colStart[c], h = qt_.rowStart[r + 1] - qt_.rowStart[r];
+    const int w = qt_.blockWidth(b), h = qt_.blockHeight(b);
     if (m >= 0 && (m > topLevel(w, h) || blockShape(w, h, m) == BlockShape::Invalid))
     {
       lastError_ = "level list holds a level that is not valid for its block";

@@ -99,17 +99,6 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
   return worst;
 }
 
-struct BlockRect
-{
-  int w, h;
-};
-
-BlockRect blockSize(const Quadtree& qt, int block)
-{
-  const int c = block % qt.blockCols, r = block / qt.blockCols;
-  return { qt.colStart[c + 1] - qt.colStart[c], qt.rowStart[r + 1] - qt.rowStart[r] };
-}
-
 float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
   BlockPart part, bool strict, std::vector<uint32_t>& scratch)
 {
@@ -121,8 +110,8 @@ float partError(const Heightfield& hf, const Quadtree& qt, int block, const Bloc
 void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable& t,
   std::vector<uint32_t>& scratch)
 {
-  const BlockRect size = blockSize(qt, block);
-  const int top = topLevel(size.w, size.h);
+  const int width = qt.blockWidth(block), height = qt.blockHeight(block);
+  const int top = topLevel(width, height);
   float* own = &t.ownError[static_cast<std::size_t>(block) * t.levels];
   float* exact = &t.ownErrorExact[static_cast<std::size_t>(block) * t.levels];
   float* strips = &t.stripError[static_cast<std::size_t>(block) * 4 * t.pairs];
@@ -130,7 +119,7 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
   float running = 0.0f;
   for (int m = 0; m < t.levels; ++m)
   {
-    const BlockShape shape = blockShape(size.w, size.h, m);
+    const BlockShape shape = blockShape(width, height, m);
     own[m] = exact[m] = kInf;
     if (m > top || shape == BlockShape::Invalid || (lockFullRes && m > 0))
     {
@@ -156,7 +145,7 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
         e = std::max(e, previous);
         // Coarser edges: from the first coarser level until the edge is just its corners;
         // beyond that the strip no longer changes.
-        const int edgeLength = (side == South || side == North) ? size.w : size.h;
+        const int edgeLength = (side == South || side == North) ? width : height;
         for (int n = m + 1; n < t.levels; ++n)
         {
           const bool changes = ((1LL << (n - 1)) < edgeLength);
@@ -205,8 +194,7 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   int maxTop = 0;
   for (int b = 0; b < qt.blockCount(); ++b)
   {
-    const BlockRect s = blockSize(qt, b);
-    maxTop = std::max(maxTop, topLevel(s.w, s.h));
+    maxTop = std::max(maxTop, topLevel(qt.blockWidth(b), qt.blockHeight(b)));
   }
   t.levels = maxTop + 1;
   t.pairs = t.levels * (t.levels - 1) / 2;

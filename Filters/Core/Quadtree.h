@@ -44,6 +44,16 @@ struct Quadtree
 
   int blockCount() const { return blockCols * blockRows; }
   int blockIndex(int col, int row) const { return row * blockCols + col; }
+  int blockWidth(int block) const // in quads
+  {
+    const int c = block % blockCols;
+    return colStart[c + 1] - colStart[c];
+  }
+  int blockHeight(int block) const // in quads
+  {
+    const int r = block / blockCols;
+    return rowStart[r + 1] - rowStart[r];
+  }
 };
 
 // Splits [0, quads] into bands of at most maxQuads quads by recursive halving (rounding

@@ -80,15 +80,12 @@ void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8
 
 int blockTop(const Quadtree& qt, int b)
 {
-  const int c = b % qt.blockCols, r = b / qt.blockCols;
-  return topLevel(qt.colStart[c + 1] - qt.colStart[c], qt.rowStart[r + 1] - qt.rowStart[r]);
+  return topLevel(qt.blockWidth(b), qt.blockHeight(b));
 }
 
 bool ringLevel(const Quadtree& qt, int b, int m)
 {
-  const int c = b % qt.blockCols, r = b / qt.blockCols;
-  return blockShape(qt.colStart[c + 1] - qt.colStart[c], qt.rowStart[r + 1] - qt.rowStart[r], m) ==
-    BlockShape::Ring;
+  return blockShape(qt.blockWidth(b), qt.blockHeight(b), m) == BlockShape::Ring;
 }
 
 // Coarsest valid level whose (monotone) own error fits the budget; level 0 always fits.
