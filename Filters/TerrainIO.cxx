@@ -30,6 +30,14 @@ constexpr double kCompressedFloorBytes = 64.0 * 1024 * 1024;
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
+// A scaled height as float; NaN (nodata) when not finite or beyond float range, where the
+// cast would be undefined (e.g. a float64 1e300, or a huge HeightScale).
+float toHeight(double v)
+{
+  const double maxFloat = std::numeric_limits<float>::max();
+  return std::abs(v) <= maxFloat ? static_cast<float>(v) : kNaN;
+}
+
 bool hasImageExtension(const std::string& path)
 {
   static const std::set<std::string> ext = { "png", "jpg", "jpeg", "bmp", "tga", "pgm", "ppm",
@@ -132,6 +140,13 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
   {
     return std::string("has an unsupported sample type (") + GDALGetDataTypeName(type) + ")";
   }
+  // A colour image (RGB or palette) would give one colour channel as heights: garbage.
+  const GDALColorInterp colour = GDALGetRasterColorInterpretation(band);
+  if (colour == GCI_RedBand || colour == GCI_PaletteIndex)
+  {
+    return std::string("is a colour (") + GDALGetColorInterpretationName(colour) +
+      ") image, not a single-band heightmap";
+  }
   static const std::set<std::string> text = { "AAIGrid", "GRASSASCIIGrid", "USGSDEM", "XYZ",
     "ISG", "GXF" };
   static const std::set<std::string> raw = { "SRTMHGT", "EHdr", "ENVI", "GenBin", "BT", "PAux" };
@@ -163,6 +178,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
     // No georeference: like an image (north up, origin 0, the reader's Spacing).
     out.x0 = out.y0 = 0.0;
     out.dx = out.dy = opt.spacing;
+    out.georeferenced = false;
     return std::string();
   }
   if (gt[2] != 0.0 || gt[4] != 0.0 || gt[1] == 0.0 || gt[5] == 0.0)
@@ -236,6 +252,15 @@ std::string gdalRead(const std::string& path, double fileSize, const TerrainRead
   ds.h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!ds.h)
   {
+    if (path.size() > 4 && (path.compare(path.size() - 4, 4, ".hgt") == 0 ||
+                             path.compare(path.size() - 4, 4, ".HGT") == 0))
+    {
+      // GDAL recognises SRTM tiles by size alone: say which sizes would have worked.
+      return "is not a raster GDAL can read: SRTM .hgt tiles are identified by size, e.g. "
+             "1201 x 1201 (2884802 bytes) or 3601 x 3601 (25934402 bytes) int16 samples; this "
+             "one has " +
+        std::to_string(static_cast<long long>(fileSize)) + " bytes" + errors.suffix();
+    }
     return "is not a raster GDAL can read" + errors.suffix();
   }
   double unitToMetre = 1.0;
@@ -245,9 +270,11 @@ std::string gdalRead(const std::string& path, double fileSize, const TerrainRead
     return problem.empty() ? problem : problem + errors.suffix();
   }
   GDALRasterBandH band = GDALGetRasterBand(ds.h, 1);
+  // Without a geotransform GDAL reports (0, 1, 0, 0, 0, 1), but row 0 is still the top
+  // (north) row, as in any image: flip rows then too.
   double gt[6] = { 0, 1, 0, 0, 0, -1 };
-  GDALGetGeoTransform(ds.h, gt);
-  const bool flipRows = gt[5] < 0.0, flipCols = gt[1] < 0.0;
+  const bool hasGt = GDALGetGeoTransform(ds.h, gt) == CE_None;
+  const bool flipRows = !hasGt || gt[5] < 0.0, flipCols = hasGt && gt[1] < 0.0;
   int hasNodata = 0, hasScale = 0, hasOffset = 0;
   const double nodata = GDALGetRasterNoDataValue(band, &hasNodata);
   const float nodataF = static_cast<float>(nodata);
@@ -278,7 +305,7 @@ std::string gdalRead(const std::string& path, double fileSize, const TerrainRead
       {
         const float v = src[c];
         const bool missing = !std::isfinite(v) || (hasNodata && v == nodataF);
-        dst[flipCols ? nx - 1 - c : c] = missing ? kNaN : static_cast<float>(scale * v + offset);
+        dst[flipCols ? nx - 1 - c : c] = missing ? kNaN : toHeight(scale * v + offset);
       }
     }
     (*progress)(static_cast<double>(r0 + rows) / ny);
@@ -294,8 +321,8 @@ void convertGrey(const T* src, int nx, int ny, double scale, double offset, floa
     float* dst = z + static_cast<std::size_t>(ny - 1 - r) * nx;
     for (int c = 0; c < nx; ++c)
     {
-      const double v = scale * static_cast<double>(src[static_cast<std::size_t>(r) * nx + c]) + offset;
-      dst[c] = std::isfinite(v) ? static_cast<float>(v) : kNaN;
+      const double v = static_cast<double>(src[static_cast<std::size_t>(r) * nx + c]);
+      dst[c] = toHeight(scale * v + offset);
     }
   }
 }
@@ -368,7 +395,7 @@ std::string oiioRead(const std::string& path, double fileSize, const TerrainRead
       for (int c = 0; c < nx; ++c, p += 3)
       {
         const double h = (p[0] * 65536.0 + p[1] * 256.0 + p[2]) / 10.0 - 10000.0;
-        dst[c] = static_cast<float>(scale * h + offset);
+        dst[c] = toHeight(scale * h + offset);
       }
     }
   }

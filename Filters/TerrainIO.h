@@ -28,6 +28,7 @@ struct TerrainRaster
   std::string format;        // GDAL driver / OpenImageIO format name
   std::string heightUnit;
   bool geographic = false;
+  bool georeferenced = true;     // false: a GDAL raster without geotransform (Spacing used)
   double lon0 = 0.0, lat0 = 0.0; // geographic only: lon/lat of sample (0, 0)
   std::vector<float> z;          // nx * ny, row j = northwards, NaN = nodata
 };

@@ -13,6 +13,7 @@
 
 #include "TerrainIO.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -64,6 +65,13 @@ int vtkGeoMipMapTerrainReader::RequestInformation(
     vtkErrorMacro(<< "Cannot read '" << name << "': the file " << problem << ".");
     return 0;
   }
+  if (!header.georeferenced)
+  {
+    // Accepted like an image heightmap, but say so: a GeoTIFF that lost its tags would
+    // otherwise silently land at the origin with 1 m (Spacing) samples.
+    vtkWarningMacro(<< "Reading '" << name << "': the file has no georeference; using origin "
+                    << "(0, 0) and Spacing " << this->Spacing << ".");
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int extent[6] = { 0, header.nx - 1, 0, header.ny - 1, 0, 0 };
   double spacing[3] = { header.dx, header.dy, 1.0 };
@@ -105,7 +113,14 @@ int vtkGeoMipMapTerrainReader::RequestData(
   heights->SetName("Elevation");
   heights->SetNumberOfTuples(static_cast<vtkIdType>(raster.z.size()));
   std::memcpy(heights->GetPointer(0), raster.z.data(), raster.z.size() * sizeof(float));
+  const bool anyValid =
+    std::any_of(raster.z.begin(), raster.z.end(), [](float z) { return std::isfinite(z); });
   raster.z = std::vector<float>(); // release before the field data is built
+  if (!anyValid)
+  {
+    // Not an error (a tile of a larger DEM may be all void), but nothing will be drawn.
+    vtkWarningMacro(<< "Reading '" << name << "': every sample is nodata; nothing will be drawn.");
+  }
   output->GetPointData()->SetScalars(heights);
 
   vtkFieldData* fd = output->GetFieldData();

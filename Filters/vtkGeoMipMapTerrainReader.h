@@ -9,8 +9,9 @@
  *
  * Formats:
  * - Through GDAL: GeoTIFF and every raster GDAL reads (SRTM .hgt, USGS .dem, ESRI ASCII
- *   .asc, ...). Band 1 is read; GDAL's nodata value and non-finite values become NaN;
- *   band scale/offset are applied; heights in feet (GDAL unit type "ft", "foot", "US survey
+ *   .asc, ...). Band 1 is read; GDAL's nodata value, non-finite values and heights beyond
+ *   float range become NaN; a colour (RGB or palette) raster is refused; band
+ *   scale/offset are applied; heights in feet (GDAL unit type "ft", "foot", "US survey
  *   foot") are converted to metres.
  * - Through OpenImageIO: plain image heightmaps (.png, .jpg, .bmp, .tga, .pgm/.ppm, .exr,
  *   .hdr), 8/16/32-bit integer or float greyscale (a 2-channel grey + alpha image uses
@@ -37,6 +38,8 @@
  *   field data array "GeographicOrigin" holds (lon0, lat0). The error of this
  *   equirectangular frame over a one-degree tile is below 0.1 % of distances.
  * - Images read through OpenImageIO have no georeference: origin (0, 0), Spacing metres.
+ *   A GDAL raster without a geotransform is read the same way, rows north-up, with a
+ *   warning (a GeoTIFF that lost its tags should not pass unnoticed).
  *
  * Field data: "CRS" (string: "EPSG:xxxx", the WKT, or "none"), "SourceFormat" (GDAL driver
  * or OpenImageIO format name), "HeightUnit" (string), "GeographicOrigin" (2 doubles, only
@@ -45,7 +48,8 @@
  * Robustness: a missing, empty, truncated or malformed file, an unsupported sample type, or
  * a header whose size the file cannot hold (checked against the file size and a cap of
  * 2^31 - 1 samples before anything is allocated) ends in vtkErrorMacro naming the file and
- * the problem, and the update fails. The reader stays usable for the next file.
+ * the problem, and the update fails. The reader stays usable for the next file. A file
+ * whose samples are all nodata reads, with a warning: nothing will be drawn.
  *
  * @sa vtkGeoMipMapFractalSource vtkDEMReader
  */
