@@ -101,16 +101,21 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
   levels_.assign(qt_.blockCount(), -1);
   if (levels.size() != levels_.size())
   {
-    lastError_ = "level list does not match the number of blocks";
+    std::ostringstream why;
+    why << "level list holds " << levels.size() << " levels for " << levels_.size() << " blocks";
+    lastError_ = why.str();
     return finishFrame(nullptr);
   }
   for (int b = 0; b < qt_.blockCount(); ++b)
   {
     const int m = levels[b];
     const int w = qt_.blockWidth(b), h = qt_.blockHeight(b);
-    if (m >= 0 && (m > topLevel(w, h) || blockShape(w, h, m) == BlockShape::Invalid))
+    if (m < -1 || (m >= 0 && (m > topLevel(w, h) || blockShape(w, h, m) == BlockShape::Invalid)))
     {
-      lastError_ = "level list holds a level that is not valid for its block";
+      std::ostringstream why;
+      why << "level " << m << " is not valid for block " << b << " (" << w << " x " << h
+          << " quads; -1 = not drawn, 0.." << topLevel(w, h) << " where the shape allows)";
+      lastError_ = why.str();
       levels_.assign(qt_.blockCount(), -1);
       return finishFrame(nullptr);
     }
@@ -131,7 +136,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
       ++s.visibleBlocks;
       const double e = blockCertifiedError(qt_, table_, levels_, b);
       s.maxGeometricError = std::max(s.maxGeometricError, e);
-      if (factor)
+      if (factor && e > 0.0) // e == 0 with an infinite factor would give NaN
       {
         s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);
       }

@@ -34,18 +34,27 @@ struct FrameStats
 class Engine
 {
 public:
-  // Validates `hf`, builds the quadtree (leaves at most maxBlockQuads quads a side, >= 4) and
-  // the error table. Returns "" on success or the reason it failed (the engine is then empty).
+  // Validates `hf` (validateHeightfield), builds the quadtree (leaves at most maxBlockQuads
+  // quads a side, >= 4) and the error table. Returns "" on success or the reason it failed
+  // (the engine is then empty). +-Inf heights become nodata (NaN) in the engine's copy. A DEM
+  // that is all nodata is accepted and draws nothing (zero triangles, no error): a void tile
+  // is valid data, not a mistake.
   std::string setHeightfield(Heightfield hf, int maxBlockQuads = 64, int threads = 0);
 
-  // One frame for a camera. Returns the frame's statistics; on a bad view or tau, sets
-  // lastError() and returns stats with zero triangles.
+  // One frame for a camera. Returns the frame's statistics; on a bad view (validateView) or
+  // tau, sets lastError() and returns stats with zero triangles. tau is in pixels, finite and
+  // >= 0: 0 allows only error-free simplification (planes), a huge tau gives the coarsest
+  // levels, and NaN, negative and +inf are refused (+inf is not read as "coarsest"). A view
+  // that sees no block (e.g. a far plane short of the terrain) is not an error.
   const FrameStats& update(const View& view, double tau);
 
-  // View-independent mode: every block at the coarsest level within maxError metres.
+  // View-independent mode: every block at the coarsest level within maxError metres
+  // (finite and >= 0, else refused like a bad tau).
   const FrameStats& updateForError(double maxError);
 
-  // Tessellates an explicit level assignment (-1 = not drawn); for tests and tools.
+  // Tessellates an explicit level assignment (-1 = not drawn); for tests and tools. A list
+  // of the wrong size, or a level that is below -1, above the block's top level or of an
+  // invalid shape (Levels.h), is refused: lastError() names the block, nothing is drawn.
   const FrameStats& updateWithLevels(const std::vector<int8_t>& levels);
 
   void setErrorMetric(ErrorMetric m) { metric_ = m; }

@@ -15,6 +15,20 @@ namespace
 {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
+// The table stores floats; rounding a double error to nearest could make the certified
+// bound a hair smaller than the measured error, so round up instead. Heights are limited to
+// +-kMaxHeight (Heightfield.h), so an error never overflows to the +inf that marks a level
+// as not allowed.
+float roundUpToFloat(double e)
+{
+  if (!(e <= std::numeric_limits<float>::max()))
+  {
+    return kInf; // only for heights validateHeightfield would refuse; avoids an undefined cast
+  }
+  const float f = static_cast<float>(e);
+  return static_cast<double>(f) < e ? std::nextafter(f, kInf) : f;
+}
+
 int64_t edgeFn(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64_t py)
 {
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
@@ -42,13 +56,18 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
   {
     return strict ? kInf : 0.0f;
   }
+  // Heights relative to vertex a: the difference of two floats of similar magnitude is
+  // exact in double, so the error does not depend on a constant height offset (an ECEF-like
+  // 6.4e6 m gives the same table as 0 m) and is exactly 0 on a plane, where the absolute
+  // barycentric sum w0*za + w1*zb + w2*zc left residues of ~1e-9 m that grew with the offset.
+  const double dzb = zb - za, dzc = zc - za;
   int64_t area = edgeFn(ax, ay, bx, by, cx, cy);
   if (area == 0)
   {
     return 0.0f; // no sample strictly covered; cannot happen for emitted triangles
   }
   const int64_t sign = area < 0 ? -1 : 1;
-  const double invArea = 1.0 / static_cast<double>(area);
+  const double fullArea = static_cast<double>(area), invArea = 1.0 / fullArea;
   const int64_t i0 = std::min({ ax, bx, cx }), i1 = std::max({ ax, bx, cx });
   const int64_t j0 = std::min({ ay, by, cy }), j1 = std::max({ ay, by, cy });
   // Edge e (p -> q) as a function of i on row j: sign * E = slope * i + offset, and a
@@ -56,7 +75,7 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
   // span of the row with integers, so skinny strip triangles cost only what they cover.
   const int64_t px[3] = { bx, cx, ax }, py[3] = { by, cy, ay };
   const int64_t qx[3] = { cx, ax, bx }, qy[3] = { cy, ay, by };
-  float worst = 0.0f;
+  double worst = 0.0;
   for (int64_t j = j0; j <= j1; ++j)
   {
     int64_t lo = i0, hi = i1;
@@ -89,14 +108,14 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
         }
         continue;
       }
-      const double w0 = static_cast<double>(edgeFn(bx, by, cx, cy, i, j));
-      const double w1 = static_cast<double>(edgeFn(cx, cy, ax, ay, i, j));
-      const double w2 = static_cast<double>(area) - w0 - w1;
-      const double surface = (w0 * za + w1 * zb + w2 * zc) * invArea;
-      worst = std::max(worst, static_cast<float>(std::abs(h - surface)));
+      const double w1 = static_cast<double>(edgeFn(cx, cy, ax, ay, i, j)); // weight of b
+      const double w2 = static_cast<double>(edgeFn(ax, ay, bx, by, i, j)); // weight of c
+      // (h - surface) * area: products of small integers and exact height differences,
+      // so exactly 0 on a plane; then one rounding by the division.
+      worst = std::max(worst, std::abs(((h - za) * fullArea - (w1 * dzb + w2 * dzc)) * invArea));
     }
   }
-  return worst;
+  return roundUpToFloat(worst);
 }
 
 float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,

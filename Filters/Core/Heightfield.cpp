@@ -41,7 +41,19 @@ std::string validateHeightfield(const Heightfield& hf)
   const double extentX = std::abs(hf.dx) * (hf.nx - 1), extentY = std::abs(hf.dy) * (hf.ny - 1);
   if (!std::isfinite(extentX) || !std::isfinite(extentY))
   {
-    return "spacing times size overflows";
+    why << "spacing (" << hf.dx << ", " << hf.dy << ") times size " << hf.nx << " x " << hf.ny
+        << " overflows";
+    return why.str();
+  }
+  for (std::size_t k = 0; k < hf.z.size(); ++k)
+  {
+    const float h = hf.z[k];
+    if (std::isfinite(h) && std::abs(h) > kMaxHeight)
+    {
+      why << "height " << h << " at sample (" << k % hf.nx << ", " << k / hf.nx
+          << ") is beyond +-" << kMaxHeight << " m; is it an undeclared nodata value?";
+      return why.str();
+    }
   }
   return std::string();
 }

@@ -29,9 +29,17 @@ struct Heightfield
   bool mirrored() const { return (dx < 0) != (dy < 0); }
 };
 
+// Largest accepted |height| of a finite sample. The difference of two heights is the
+// largest geometric error the error table can hold, and it must stay a finite float (+inf
+// there means "level not allowed"): 2 * 1e38 < FLT_MAX = 3.4e38. A DEM beyond it is almost
+// always an undeclared nodata value such as -FLT_MAX, which the message suggests.
+constexpr double kMaxHeight = 1e38;
+
 // Checks a heightfield for use by the engine. Returns an empty string when it is usable,
-// otherwise a sentence that says what is wrong (size below 2 x 2, height count that does not
-// match the size, zero or non-finite spacing or origin, more samples than 2^32 - 1 indices).
+// otherwise a sentence that says what is wrong (size below 2 x 2, more samples than 2^32 - 1
+// indices, height count that does not match the size, zero or non-finite spacing or origin,
+// an extent that overflows, a finite height beyond +-kMaxHeight). The size checks come
+// before anything touches the heights, so an absurd size allocates nothing.
 std::string validateHeightfield(const Heightfield& hf);
 
 // Replaces +-Inf by NaN (nodata) in place and returns how many samples were replaced.

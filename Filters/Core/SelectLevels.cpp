@@ -78,6 +78,26 @@ void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8
   }
 }
 
+// |q| also when |q|^2 overflows (an eye 1e200 m away is absurd but finite: it must still
+// give a tiny positive factor, not Inf / Inf = NaN).
+double robustLength(const glm::dvec3& q)
+{
+  const double d2 = glm::dot(q, q);
+  if (std::isfinite(d2))
+  {
+    return std::sqrt(d2);
+  }
+  const double s = std::max({ std::abs(q.x), std::abs(q.y), std::abs(q.z) });
+  return s * glm::length(q / s);
+}
+
+// selectLevels reads a zero factor as "culled", so a visible block keeps a positive one
+// even when the exact value underflows.
+double visibleFactor(double f)
+{
+  return std::max(f, std::numeric_limits<double>::min());
+}
+
 int blockTop(const Quadtree& qt, int b)
 {
   return topLevel(qt.blockWidth(b), qt.blockHeight(b));
@@ -89,6 +109,7 @@ bool ringLevel(const Quadtree& qt, int b, int m)
 }
 
 // Coarsest valid level whose (monotone) own error fits the budget; level 0 always fits.
+// Budgets are finite (selectLevels clamps them), so a level marked +inf never fits.
 int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
 {
   for (int m = top; m > 0; --m)
@@ -200,27 +221,29 @@ void projectionFactors(const Quadtree& qt, const View& view, const std::vector<u
     }
     if (view.parallel)
     {
-      factor[b] = ppu; // orthographic: same scale at every depth
+      factor[b] = visibleFactor(ppu); // orthographic: same scale at every depth
       continue;
     }
     const Box& box = qt.blockBox[b];
     if (metric == ErrorMetric::CenterDistance)
     {
-      const double d = glm::length(0.5 * (box.lo + box.hi) - view.eye);
-      factor[b] = ppu / std::max(d, view.nearDistance);
+      const double d = robustLength(0.5 * (box.lo + box.hi) - view.eye);
+      factor[b] = visibleFactor(ppu / std::max(d, view.nearDistance));
       continue;
     }
-    double maxDist2 = 0.0, minDepth = std::numeric_limits<double>::infinity();
+    double maxDist = 0.0, minDepth = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 8; ++k)
     {
       const glm::dvec3 corner(
         (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z);
       const glm::dvec3 q = corner - view.eye;
-      maxDist2 = std::max(maxDist2, glm::dot(q, q));
+      maxDist = std::max(maxDist, robustLength(q));
       minDepth = std::min(minDepth, glm::dot(q, cam.forward));
     }
     const double depth = std::max(minDepth, view.nearDistance);
-    factor[b] = ppu * std::sqrt(maxDist2) / (depth * depth);
+    // Divide twice rather than by depth^2, which overflows first. +inf (a near plane of
+    // 1e-300) is allowed: selectLevels then gives the block a zero error budget.
+    factor[b] = visibleFactor(ppu * (maxDist / depth) / depth);
   }
 }
 
@@ -234,7 +257,10 @@ void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector
     if (factor[b] > 0.0)
     {
       levels[b] = 0;
-      budget[b] = std::isfinite(factor[b]) ? tau / factor[b] : 0.0;
+      // tau / factor overflows for a huge tau or a tiny factor (a far camera); +inf would
+      // let "error <= budget" accept the +inf of levels not allowed (over nodata).
+      const double most = std::numeric_limits<double>::max();
+      budget[b] = std::isfinite(factor[b]) ? std::min(tau / factor[b], most) : 0.0;
     }
   }
   selectWithBudgets(qt, table, budget, levels);

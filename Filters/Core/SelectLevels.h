@@ -34,12 +34,13 @@ void projectionFactors(const Quadtree& qt, const View& view, const std::vector<u
 
 // Chooses the coarsest level per visible block whose projected error is <= tau pixels, then
 // refines neighbours until every side strip joined to a coarser edge is within tau too.
-// levels[b] = -1 for culled blocks. tau must be finite and >= 0.
+// levels[b] = -1 for culled blocks. tau must be finite and >= 0; any such tau works, DBL_MAX
+// included (the per-block budget tau / factor is clamped to a finite value).
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& factor,
   double tau, std::vector<int8_t>& levels);
 
 // View-independent selection: every block takes the coarsest level whose error (including
-// strips) is <= maxError metres.
+// strips) is <= maxError metres (finite and >= 0).
 void selectLevelsForError(
   const Quadtree& qt, const ErrorTable& table, double maxError, std::vector<int8_t>& levels);
 

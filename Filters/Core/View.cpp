@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -13,6 +14,19 @@ namespace
 bool finite3(const glm::dvec3& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Unit vector along v, also when |v|^2 overflows or underflows a double (forward =
+// (0, 1e200, 0) is a valid direction; glm::normalize would give NaN or Inf). Zero for zero.
+glm::dvec3 unit(const glm::dvec3& v)
+{
+  const double s = std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
+  if (!(s > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  const glm::dvec3 w = v / s; // largest component is now +-1
+  return w / glm::length(w);
 }
 
 glm::dvec4 plane(const glm::dvec3& normal, const glm::dvec3& through)
@@ -29,25 +43,26 @@ std::string validateView(const View& v)
   {
     return "camera position, direction and view-up must be finite";
   }
-  const double fl = glm::length(v.forward);
-  if (!(fl > 0.0) || !std::isfinite(fl))
+  const glm::dvec3 f = unit(v.forward);
+  if (f == glm::dvec3(0.0))
   {
     return "camera direction has zero length";
   }
-  const glm::dvec3 f = v.forward / fl;
-  const double ul = glm::length(v.up);
-  if (!(ul > 0.0) || glm::length(glm::cross(f, v.up / ul)) < 1e-9)
+  const glm::dvec3 u = unit(v.up);
+  if (u == glm::dvec3(0.0) || glm::length(glm::cross(f, u)) < 1e-9)
   {
     return "camera view-up is zero or parallel to the view direction";
   }
-  if (!v.parallel && !(v.fovYDegrees > 0.0 && v.fovYDegrees < 180.0))
+  // Both projection parameters must be sane whatever the mode: a NaN in the unused one is
+  // still a caller bug worth reporting, and switching modes must not expose it later.
+  if (!(v.fovYDegrees > 0.0 && v.fovYDegrees < 180.0))
   {
     why << "field of view " << v.fovYDegrees << " degrees is outside (0, 180)";
     return why.str();
   }
-  if (v.parallel && !(v.parallelScale > 0.0 && std::isfinite(v.parallelScale)))
+  if (!(v.parallelScale > 0.0 && std::isfinite(v.parallelScale)))
   {
-    why << "parallel scale " << v.parallelScale << " must be positive";
+    why << "parallel scale " << v.parallelScale << " must be positive and finite";
     return why.str();
   }
   if (!(v.nearDistance > 0.0) || !(v.farDistance > v.nearDistance) || !std::isfinite(v.farDistance))
@@ -67,8 +82,8 @@ std::string validateView(const View& v)
 CameraFrame cameraFrameOf(const View& v)
 {
   CameraFrame c;
-  c.forward = glm::normalize(v.forward);
-  c.right = glm::normalize(glm::cross(c.forward, v.up));
+  c.forward = unit(v.forward);
+  c.right = unit(glm::cross(c.forward, unit(v.up)));
   c.up = glm::cross(c.right, c.forward);
   return c;
 }

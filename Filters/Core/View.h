@@ -29,8 +29,11 @@ struct View
 using Frustum = std::array<glm::dvec4, 6>;
 
 // Checks a view. Empty string when usable, else what is wrong (non-finite values, zero
-// forward, up parallel to forward, field of view outside (0, 180), near <= 0 or far <= near,
-// viewport below 1 x 1, parallel scale <= 0).
+// forward, up zero or parallel to forward, field of view outside (0, 180), parallel scale
+// <= 0, near <= 0 or far <= near, viewport below 1 x 1). The field of view and the parallel
+// scale are checked in both modes. There is no fallback for a degenerate view-up: the
+// caller knows which "up" it meant. forward and up may have any finite, non-zero length
+// (1e-200 and 1e200 included).
 std::string validateView(const View& view);
 
 Frustum frustumOf(const View& view);
