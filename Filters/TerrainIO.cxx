@@ -1,5 +1,7 @@
 #include "TerrainIO.h"
 
+#include "Heightfield.h" // gmm::kMaxHeight
+
 #include <GeographicLib/Ellipsoid.hpp>
 #include <OpenImageIO/imageio.h>
 #include <cpl_conv.h>
@@ -30,12 +32,12 @@ constexpr double kCompressedFloorBytes = 64.0 * 1024 * 1024;
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-// A scaled height as float; NaN (nodata) when not finite or beyond float range, where the
-// cast would be undefined (e.g. a float64 1e300, or a huge HeightScale).
+// A scaled height as float; NaN (nodata) when not finite or beyond the engine's height
+// range (gmm::kMaxHeight, 1e38): such values are undeclared nodata sentinels (-FLT_MAX is
+// common), and beyond float range the cast would be undefined (a float64 1e300).
 float toHeight(double v)
 {
-  const double maxFloat = std::numeric_limits<float>::max();
-  return std::abs(v) <= maxFloat ? static_cast<float>(v) : kNaN;
+  return std::abs(v) <= gmm::kMaxHeight ? static_cast<float>(v) : kNaN;
 }
 
 bool hasImageExtension(const std::string& path)

@@ -16,14 +16,14 @@ namespace
 template <typename T>
 void CopyHeights(const T* src, int comps, std::size_t n, float* dst)
 {
-  // Component 0 of each tuple; non-finite values, and doubles beyond float range (1e300,
-  // whose cast would be undefined), become NaN, the engine's nodata.
-  constexpr double maxFloat = std::numeric_limits<float>::max();
+  // Component 0 of each tuple; non-finite values and values beyond the engine's height
+  // range (gmm::kMaxHeight: undeclared nodata such as -FLT_MAX, or a double 1e300 whose
+  // cast would be undefined) become NaN, the engine's nodata.
   for (std::size_t k = 0; k < n; ++k)
   {
     const double v = static_cast<double>(src[k * comps]);
-    dst[k] =
-      std::abs(v) <= maxFloat ? static_cast<float>(v) : std::numeric_limits<float>::quiet_NaN();
+    dst[k] = std::abs(v) <= gmm::kMaxHeight ? static_cast<float>(v)
+                                            : std::numeric_limits<float>::quiet_NaN();
   }
 }
 

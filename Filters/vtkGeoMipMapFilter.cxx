@@ -20,6 +20,7 @@
 #include "Engine.h"
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 struct vtkGeoMipMapFilter::Internals
@@ -192,6 +193,22 @@ int vtkGeoMipMapFilter::RequestData(
   addDouble("MaximumScreenSpaceError", stats->maxScreenError);
   addDouble("MaximumGeometricError", stats->maxGeometricError);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapFilter::SetPixelError(double tau)
+{
+  if (!(tau >= 0.0) || !std::isfinite(tau))
+  {
+    vtkErrorMacro("PixelError must be a finite number >= 0, got " << tau << "; keeping "
+                                                                  << this->PixelError);
+    return;
+  }
+  if (tau != this->PixelError)
+  {
+    this->PixelError = tau;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

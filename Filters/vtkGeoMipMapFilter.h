@@ -60,8 +60,10 @@ public:
   ///@{
   /**
    * Largest screen-space error in pixels (tau) in view-dependent mode. Default 1.0.
+   * Negative or NaN values are rejected with an error and the previous value is kept
+   * (as vtkGeoMipMapMapper::SetPixelError).
    */
-  vtkSetClampMacro(PixelError, double, 0.0, VTK_DOUBLE_MAX);
+  void SetPixelError(double tau);
   vtkGetMacro(PixelError, double);
   ///@}
 

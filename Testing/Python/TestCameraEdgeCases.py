@@ -181,8 +181,7 @@ t9, _ = run("PixelError 1e9", down, tau=1e9, expect_tris=some)
 check(t0 >= t6 >= t2 >= t9 > 0 and t9 < t2,
       "triangles fall as PixelError grows: %d >= %d >= %d >= %d > 0" % (t0, t6, t2, t9))
 
-# Invalid pixel errors. The mapper refuses them (error, old value kept); the filter's
-# clamping setter turns -1 into 0 and keeps NaN, which its update rejects with an error.
+# Invalid pixel errors: mapper and filter both refuse them (error, old value kept).
 for bad in (-1.0, float("nan")):
     down()
     mapper.SetPixelError(2.0)
@@ -195,15 +194,15 @@ for bad in (-1.0, float("nan")):
     scene.win.Render()
     check(not messages.take()[0] and mapper.GetNumberOfRenderedTriangles() == t2,
           "mapper PixelError %g: renders as with 2 afterwards" % bad)
-filt.SetPixelError(-1.0)
-check(filt.GetPixelError() == 0.0, "filter PixelError -1 is clamped to 0")
-down()
-filt.SetPixelError(float("nan"))
-messages.take()
-ok = filt.GetExecutive().Update() == 1
-errors, _ = messages.take()
-check(not ok and any("pixel error nan must be finite and >= 0" in e for e in errors),
-      "filter PixelError NaN: update fails with 'pixel error nan must be finite and >= 0'")
+    filt.SetPixelError(2.0)
+    messages.take()
+    filt.SetPixelError(bad)
+    errors, _ = messages.take()
+    check(any("PixelError must be a finite number >= 0" in e for e in errors)
+          and filt.GetPixelError() == 2.0,
+          "filter PixelError %g: error, 2 kept" % bad)
+    ok = filt.GetExecutive().Update() == 1
+    check(ok and not messages.take()[0], "filter PixelError %g: updates as with 2" % bad)
 
 if failures:
     print("%d check(s) failed" % len(failures))
