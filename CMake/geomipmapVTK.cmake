@@ -124,3 +124,4 @@ install(FILES "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/geomipmap/__init__.py"
 
 # geomipmap-fly command, its Python package and tests (Plugin/Python).
 include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapFly.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapBench.cmake")

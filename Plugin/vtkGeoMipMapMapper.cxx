@@ -295,6 +295,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("LOD update failed: " << this->Internal->Engine.lastError());
   }
   this->IndicesDirty = this->IndicesDirty || !stats.reused;
+  this->LastIndexUploadTime = 0.0; // accumulated by UploadIndices during this frame
 
   this->CurrentInput = this->Mesh;
   this->UpdateCameraShiftScale(ren, act);
@@ -345,11 +346,29 @@ void vtkGeoMipMapMapper::BuildIBO(vtkRenderer*, vtkActor* act, vtkPolyData*)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Adds the time from its start to its destruction to a counter (every return path of
+// UploadIndices is timed).
+struct UploadTimer
+{
+  std::chrono::steady_clock::time_point Start;
+  double& Seconds;
+  ~UploadTimer()
+  {
+    this->Seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+  }
+};
+}
+
 void vtkGeoMipMapMapper::UploadIndices(vtkActor* act)
 {
   const std::vector<uint32_t>& tris = this->Internal->Engine.indices();
   vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
   ++this->NumberOfIndexUploads;
+  const auto start = std::chrono::steady_clock::now();
+  UploadTimer timer{ start, this->LastIndexUploadTime };
   this->IndicesDirty = false;
   if (tris.empty())
   {
@@ -400,4 +419,5 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastUpdateTime: " << this->LastUpdateTime << "\n";
   os << indent << "NumberOfVertexUploads: " << this->NumberOfVertexUploads << "\n";
   os << indent << "NumberOfIndexUploads: " << this->NumberOfIndexUploads << "\n";
+  os << indent << "LastIndexUploadTime: " << this->LastIndexUploadTime << "\n";
 }

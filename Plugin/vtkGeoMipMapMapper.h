@@ -95,6 +95,12 @@ public:
   ///@}
 
   /**
+   * Wall time, in seconds, spent uploading the triangle index buffer during the last
+   * rendered frame (0 when the indices were reused).
+   */
+  vtkGetMacro(LastIndexUploadTime, double);
+
+  /**
    * Bounds of the valid (non-NaN) samples.
    */
   double* GetBounds() override;
@@ -128,6 +134,7 @@ protected:
   double LastUpdateTime = 0.0;
   int NumberOfVertexUploads = 0;
   int NumberOfIndexUploads = 0;
+  double LastIndexUploadTime = 0.0;
 
   vtkNew<vtkPolyData> Mesh;
   vtkMTimeType MeshInputTime = 0;    // input image MTime the engine was built from

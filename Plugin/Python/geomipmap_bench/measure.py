@@ -1,0 +1,140 @@
+"""Timed frames, measured screen-space error and the depth-buffer check.
+
+Why here and not in the engine: the measured error must not share code with the bound it
+checks. geomipmap.vtkGeoMipMapScreenError (C++, no gmm code) rasterises any mesh over the
+full-resolution grid and projects true and drawn points with the camera's own matrix.
+
+Depth check: a pixel "differs by more than one depth step" from the full-resolution
+rendering when |z - z_ref| exceeds the largest |z_ref(p) - z_ref(q)| over its 8
+neighbours q (what shifting the reference image by one pixel could cause) plus one 24-bit
+depth quantum, or when exactly one of the two shows terrain (the other background).
+"""
+
+import time
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkFloatArray
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
+
+DEPTH_QUANTUM = 2.0 ** -24
+
+
+class Bench:
+    """One window and renderer (geomipmap_fly's Scene); one actor shown at a time."""
+
+    def __init__(self, scene, image, heights, flight, size):
+        import geomipmap
+
+        self.scene, self.image, self.heights, self.flight = scene, image, heights, flight
+        self.size = size
+        xmin, xmax, ymin, ymax = heights.bounds
+        self.bounds = (min(xmin, xmax), max(xmin, xmax), min(ymin, ymax), max(ymin, ymax),
+                       heights.zmin, heights.zmax)
+        self.error = geomipmap.vtkGeoMipMapScreenError()
+        self.error.SetHeightfield(image)
+        self.error.SetViewportSize(*size)
+        self.filter = geomipmap.vtkGeoMipMapFilter()
+        self.filter.SetInputData(image)
+        self.filter.SetCamera(scene.renderer.GetActiveCamera())
+        self.filter.SetViewportSize(*size)
+        self.filter.SetBlockSize(scene.mapper.GetBlockSize())
+
+    def camera(self, frame):
+        """Frame's camera; one clipping range for every method (from the terrain's bounds),
+        so that depth buffers are comparable."""
+        self.scene.set_camera(self.flight.positions[frame], self.flight.focal[frame])
+        self.scene.renderer.ResetCameraClippingRange(*self.bounds)
+
+    def show(self, actor):
+        for a in self.all_actors():
+            a.SetVisibility(a is actor)
+
+    def all_actors(self):
+        acts = self.scene.renderer.GetActors()
+        acts.InitTraversal()
+        return [acts.GetNextActor() for _ in range(acts.GetNumberOfItems())]
+
+    def add_mesh(self, mesh):
+        """A stock vtkPolyDataMapper actor for a mesh, coloured and lit like ours."""
+        m = vtkPolyDataMapper()
+        m.SetInputData(mesh)
+        ours = self.scene.mapper
+        m.SetLookupTable(ours.GetLookupTable())
+        m.SetScalarRange(ours.GetScalarRange())
+        m.SetColorModeToMapScalars()
+        m.ScalarVisibilityOn()
+        a = vtkActor()
+        a.SetMapper(m)
+        a.SetProperty(self.scene.actor.GetProperty())
+        self.scene.renderer.AddActor(a)
+        return a
+
+    def depth(self):
+        w, h = self.size
+        buf = vtkFloatArray()
+        self.scene.window.GetZbufferData(0, 0, w - 1, h - 1, buf)
+        return vtk_to_numpy(buf).reshape(h, w).copy()
+
+    def render(self):
+        """Render() then WaitForCompletion() (glFinish): milliseconds of wall time."""
+        w = self.scene.window
+        t0 = time.perf_counter()
+        w.Render()
+        w.WaitForCompletion()
+        return (time.perf_counter() - t0) * 1000.0
+
+    def frame(self, actor, mesh_for_frame, f, reference, extra=None):
+        """Render frame f with only `actor` shown; return (row, depth buffer).
+
+        mesh_for_frame(f) -> the vtkPolyData drawn (for the measured error); extra(row)
+        adds method-specific columns (ours: LOD and index upload times); reference: the
+        full-resolution depth buffer of this frame, or None.
+        """
+        self.show(actor)
+        self.camera(f)
+        total = self.render()
+        row = {"frame": f, "total_ms": total, "lod_ms": 0.0, "upload_ms": 0.0,
+               "render_ms": total}
+        if extra:
+            extra(row)
+        z = self.depth()
+        row["depth_bad_frac"] = (depth_mismatch(reference, z) if reference is not None
+                                 else float("nan"))
+        row.update(self.measure(mesh_for_frame(f)))
+        return row, z
+
+    def measure(self, mesh):
+        cam = self.scene.renderer.GetActiveCamera()
+        w, h = self.size
+        self.error.SetProjectionMatrix(cam.GetCompositeProjectionTransformMatrix(w / h, -1, 1))
+        self.error.SetMesh(mesh)
+        if not self.error.Compute():
+            raise RuntimeError("screen error measure failed")
+        e = self.error
+        return {"err_max_px": e.GetMaximumError(), "err_p99_px": e.GetPercentile99Error(),
+                "err_mean_px": e.GetMeanError(), "samples_in_view": e.GetNumberOfSamplesInView(),
+                "uncovered": e.GetNumberOfUncoveredSamples(),
+                "triangles": mesh.GetNumberOfPolys()}
+
+    def ours_mesh(self, tau):
+        """The mapper's triangles for the current camera (vtkGeoMipMapFilter, same engine
+        call, same camera and viewport)."""
+        self.filter.SetPixelError(tau)
+        self.filter.Modified()
+        self.filter.Update()
+        return self.filter.GetOutput()
+
+
+def depth_mismatch(ref, z):
+    """Fraction of pixels whose depth differs from the reference by more than one step."""
+    pad = np.pad(ref, 1, mode="edge")
+    h, w = ref.shape
+    step = np.zeros_like(ref)
+    for dj in (-1, 0, 1):
+        for di in (-1, 0, 1):
+            if di or dj:
+                step = np.maximum(step, np.abs(pad[1 + dj:1 + dj + h, 1 + di:1 + di + w] - ref))
+    ref_bg, bg = ref >= 1.0, z >= 1.0
+    bad = (ref_bg != bg) | (~ref_bg & ~bg & (np.abs(z - ref) > step + DEPTH_QUANTUM))
+    return float(bad.mean())

@@ -1,0 +1,161 @@
+"""The competing meshes: full-resolution grid, uniform subsampling, greedy decimation,
+quadric clustering. Each is a vtkPolyData of triangles in the terrain's world frame with
+"Elevation" point scalars (colouring) and point normals (lighting), like the mapper's.
+
+Why numpy for the grids: a 4097^2 grid has 33.5 M triangles; building its cell array in
+Python loops would take minutes, numpy builds it in seconds with 32-bit indices (half the
+memory of vtkIdType).
+"""
+
+import time
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+
+# Estimated peak bytes per full-resolution sample (vtkPolyData + the OpenGL copies llvmpipe
+# keeps in host memory), for the memory budget; each run notes its measured peak RSS.
+BYTES_PER_SAMPLE = {"brute": 110, "ours": 90, "greedy": 40, "uniform": 8, "quadric": 110}
+
+
+def grid_axes(n, stride):
+    """Sample indices 0, s, 2s, ... and always the last one (no strip is dropped)."""
+    idx = np.arange(0, n, stride)
+    return idx if idx[-1] == n - 1 else np.append(idx, n - 1)
+
+
+def grid_mesh(heights, stride=1):
+    """Triangles over every stride-th sample; quads touching nodata are left out."""
+    ii, jj = grid_axes(heights.nx, stride), grid_axes(heights.ny, stride)
+    z = heights.z[np.ix_(jj, ii)].astype(np.float32)
+    xs = (heights.ox + ii * heights.dx).astype(np.float64)
+    ys = (heights.oy + jj * heights.dy).astype(np.float64)
+    ny, nx = z.shape
+    pts = np.empty((ny, nx, 3), np.float32)
+    pts[..., 0] = xs[None, :]
+    pts[..., 1] = ys[:, None]
+    pts[..., 2] = np.nan_to_num(z, nan=heights.zmin)
+    normals = _grid_normals(z, xs, ys)
+    ids = np.arange(nx * ny, dtype=np.int32).reshape(ny, nx)
+    a, b = ids[:-1, :-1].ravel(), ids[:-1, 1:].ravel()
+    c, d = ids[1:, :-1].ravel(), ids[1:, 1:].ravel()
+    ok = np.isfinite(z)
+    good = (ok[:-1, :-1] & ok[:-1, 1:] & ok[1:, :-1] & ok[1:, 1:]).ravel()
+    a, b, c, d = a[good], b[good], c[good], d[good]
+    conn = np.empty((a.size, 6), np.int32)
+    conn[:, 0], conn[:, 1], conn[:, 2] = a, b, d
+    conn[:, 3], conn[:, 4], conn[:, 5] = a, d, c
+    del a, b, c, d
+    return _polydata(pts.reshape(-1, 3), conn.reshape(-1), normals.reshape(-1, 3),
+                     pts[..., 2].reshape(-1))
+
+
+def _grid_normals(z, xs, ys):
+    zz = np.nan_to_num(z, nan=float(np.nanmin(z)) if np.isfinite(z).any() else 0.0)
+    gy, gx = np.gradient(zz, ys, xs) if len(xs) > 1 and len(ys) > 1 else (zz * 0, zz * 0)
+    n = np.empty(z.shape + (3,), np.float32)
+    n[..., 0], n[..., 1], n[..., 2] = -gx, -gy, 1.0
+    n /= np.linalg.norm(n, axis=2, keepdims=True)
+    return n
+
+
+def _polydata(points, conn, normals, elevation):
+    """vtkPolyData of triangles from flat numpy arrays (kept alive by the VTK arrays)."""
+    pd = vtkPolyData()
+    vp = vtkPoints()
+    vp.SetData(numpy_to_vtk(np.ascontiguousarray(points, np.float32)))
+    pd.SetPoints(vp)
+    cells = vtkCellArray()
+    offsets = np.arange(0, conn.size + 1, 3, dtype=conn.dtype)
+    cells.SetData(numpy_to_vtk(offsets), numpy_to_vtk(np.ascontiguousarray(conn)))
+    pd.SetPolys(cells)
+    nv = numpy_to_vtk(np.ascontiguousarray(normals, np.float32))
+    nv.SetName("Normals")
+    pd.GetPointData().SetNormals(nv)
+    ev = numpy_to_vtk(np.ascontiguousarray(elevation, np.float32))
+    ev.SetName("Elevation")
+    pd.GetPointData().SetScalars(ev)
+    pd._keep = (offsets, conn)  # the numpy buffers behind the VTK arrays
+    return pd
+
+
+def uniform_stride(heights, triangles):
+    """The grid stride whose triangle count is closest to `triangles`."""
+    full = 2.0 * (heights.nx - 1) * (heights.ny - 1)
+    best = min(range(1, max(heights.nx, heights.ny)),
+               key=lambda s: abs(2.0 * (len(grid_axes(heights.nx, s)) - 1)
+                                 * (len(grid_axes(heights.ny, s)) - 1) - triangles))
+    return best if triangles < full else 1
+
+
+def greedy_mesh(image, triangles, budget_s):
+    """vtkGreedyTerrainDecimation to `triangles`; (mesh, seconds) or (None, reason)."""
+    from vtkmodules.vtkCommonCore import vtkCommand
+    from vtkmodules.vtkFiltersHybrid import vtkGreedyTerrainDecimation
+
+    g = vtkGreedyTerrainDecimation()
+    g.SetInputData(image)
+    g.SetErrorMeasureToNumberOfTriangles()
+    g.SetNumberOfTriangles(int(triangles))
+    g.BoundaryVertexDeletionOn()
+    g.ComputeNormalsOn()
+    start = time.perf_counter()
+    state = {"aborted": False}
+
+    def on_progress(obj, _event):
+        if time.perf_counter() - start > budget_s:
+            state["aborted"] = True
+            obj.SetAbortExecute(1)
+
+    g.AddObserver(vtkCommand.ProgressEvent, on_progress)
+    g.Update()
+    seconds = time.perf_counter() - start
+    if state["aborted"]:
+        return None, f"over the greedy time budget ({budget_s:g} s; --greedy-budget)"
+    out = vtkPolyData()
+    out.ShallowCopy(g.GetOutput())
+    _elevation_from_z(out)
+    return out, seconds
+
+
+def quadric_mesh(full_mesh, heights, triangles):
+    """vtkQuadricClustering of the full mesh with an x-y bin grid sized for `triangles`.
+
+    One bin layer in z: on a height field that puts one representative vertex per x-y
+    column (a surface, not a point cloud), about two triangles per bin.
+    """
+    from vtkmodules.vtkFiltersCore import vtkPolyDataNormals, vtkQuadricClustering
+
+    xmin, xmax, ymin, ymax = heights.bounds
+    wx, wy = abs(xmax - xmin), abs(ymax - ymin)
+    bins = max(triangles / 2.0, 4.0)
+    nx = max(int(round(np.sqrt(bins * wx / wy))), 2)
+    ny = max(int(round(bins / nx)), 2)
+    start = time.perf_counter()
+    q = vtkQuadricClustering()
+    q.SetInputData(full_mesh)
+    q.SetNumberOfDivisions(nx, ny, 1)
+    q.AutoAdjustNumberOfDivisionsOff()
+    q.CopyCellDataOff()
+    q.Update()
+    n = vtkPolyDataNormals()
+    n.SetInputConnection(q.GetOutputPort())
+    n.SplittingOff()
+    n.ConsistencyOff()
+    n.AutoOrientNormalsOff()
+    n.Update()
+    seconds = time.perf_counter() - start
+    out = vtkPolyData()
+    out.ShallowCopy(n.GetOutput())
+    _elevation_from_z(out)
+    return out, seconds
+
+
+def _elevation_from_z(pd):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    z = vtk_to_numpy(pd.GetPoints().GetData())[:, 2].astype(np.float32)
+    ev = numpy_to_vtk(z, deep=1)
+    ev.SetName("Elevation")
+    pd.GetPointData().SetScalars(ev)

@@ -1,0 +1,182 @@
+"""One DEM: load it, fly the path, time every method frame by frame.
+
+Why interleaved: the machine is shared, so background load comes in bursts. Every frame
+renders every method in turn (brute force first: its depth buffer is that frame's
+reference), so a burst slows all methods of that frame alike instead of one method's
+whole series; ratios against brute force stay meaningful.
+Memory: a method whose estimated footprint exceeds the budget is skipped, with the reason.
+"""
+
+import os
+import resource
+import time
+import types
+
+import numpy as np
+from geomipmap_fly import paths
+from geomipmap_fly.errors import FlyError, VTKMessages
+from geomipmap_fly.scene import Scene
+from geomipmap_fly.terrain import load_terrain
+
+from . import meshes
+from .measure import Bench
+
+# Read settings the files in ../shared/data need (its README.md): PNG heightmaps carry no
+# spacing or height unit, and terrain-RGB is not auto-detected by the reader.
+KNOWN_FILES = {
+    "ps_height_1k.png": dict(height_scale=0.1, spacing=160.0),
+    # z10 Web Mercator tile at 2x: 0.3516 deg of longitude at 35.32 N over 511 intervals.
+    "fuji_terrain_rgb.png": dict(terrain_rgb=True, spacing=62.5),
+}
+
+
+class Config:
+    """One timed series: a method (and tau), its actor and how to get its frame's mesh."""
+
+    def __init__(self, method, tau, actor, mesh, build_s=0.0, before=None, extra=None):
+        self.method, self.tau, self.actor, self.mesh = method, tau, actor, mesh
+        self.build_s, self.before, self.extra = build_s, before, extra
+
+
+def _rss_gb():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
+
+
+def _gb(method, samples):
+    return meshes.BYTES_PER_SAMPLE[method] * samples / 2**30
+
+
+def run_dem(label, path, n, args, methods, budget_gb, out):
+    def skip(m, why):
+        out.skip(label, m, why)
+        print(f"[{label}] {m}: skipped: {why}", flush=True)
+
+    if n and _gb("ours", n * n) > budget_gb:
+        # Every other method is sized from ours' triangle counts: without ours, none runs.
+        for m in methods:
+            why = (f"needs about {_gb(m, n * n):.0f} GB (> {budget_gb:.1f} GB budget)"
+                   if _gb(m, n * n) > budget_gb else
+                   f"sized from ours' triangle counts, and ours needs about "
+                   f"{_gb('ours', n * n):.0f} GB (> {budget_gb:.1f} GB budget)")
+            skip(m, why)
+        return
+    messages = VTKMessages()
+    ns = types.SimpleNamespace(dem=path, height_scale=1.0, spacing=None, terrain_rgb=False,
+                               synthetic_size=n or 0, seed=1)
+    if path:
+        vars(ns).update(KNOWN_FILES.get(os.path.basename(path), {}))
+    t0 = time.perf_counter()
+    try:
+        image, heights = load_terrain(ns, messages)
+    except FlyError as e:
+        skip("all", f"cannot load: {e}")
+        return
+    samples = heights.nx * heights.ny
+    out.note(label, f"{heights.nx} x {heights.ny} samples, loaded in "
+             f"{time.perf_counter() - t0:.1f} s")
+    over = {m: _gb(m, samples) > budget_gb for m in methods}
+    if "ours" not in methods or over["ours"]:
+        for m in methods:
+            skip(m, "ours does not run (memory budget or --methods): no triangle counts")
+        return
+    sargs = types.SimpleNamespace(block_size=64, tau=args.tau[0], color="elevation",
+                                  no_lighting=False, size=args.size, interactive=False,
+                                  view_angle=50.0)
+    scene = Scene(image, heights, sargs, messages)
+    route = (paths.line_path if args.path == "line" else paths.orbit_path)(heights, None)
+    bench = Bench(scene, image, heights, paths.Flight(route, heights, args.frames, 15.0),
+                  args.size)
+    configs = _build(label, args, methods, over, budget_gb, bench, heights, image, skip, out)
+    _fly(label, args, configs, bench, heights, out)
+    out.note(label, f"peak RSS {_rss_gb():.1f} GB")
+    scene.window.Finalize()
+
+
+def _targets(args, bench):
+    """Ours' mean triangle count per tau over the flight (vtkGeoMipMapFilter: the same
+    engine call as the mapper), the count the other methods are built for."""
+    counts = {tau: [] for tau in args.tau}
+    for f in range(args.frames):
+        bench.camera(f)
+        for tau in args.tau:
+            counts[tau].append(bench.ours_mesh(tau).GetNumberOfPolys())
+    return {tau: int(round(np.mean(c))) for tau, c in counts.items()}
+
+
+def _build(label, args, methods, over, budget_gb, bench, heights, image, skip, out):
+    configs = []
+    full = None
+    if ("brute" in methods and not over["brute"]) or ("quadric" in methods and not over["quadric"]):
+        t = time.perf_counter()
+        full = meshes.grid_mesh(heights, 1)
+        out.note(label, f"full-resolution mesh: {full.GetNumberOfPolys()} triangles, "
+                 f"built in {time.perf_counter() - t:.1f} s")
+    if "brute" in methods:
+        if over["brute"]:
+            skip("brute", f"needs about {_gb('brute', heights.nx * heights.ny):.1f} GB "
+                 f"(> {budget_gb:.1f} GB budget); no depth reference")
+        else:
+            configs.append(Config("brute", None, bench.add_mesh(full), lambda f: full))
+    m = bench.scene.mapper
+
+    def ours_extra(row):
+        row["lod_ms"] = m.GetLastUpdateTime() * 1000.0
+        row["upload_ms"] = m.GetLastIndexUploadTime() * 1000.0
+        row["render_ms"] = row["total_ms"] - row["lod_ms"] - row["upload_ms"]
+        row["certified_px"] = m.GetMaximumScreenSpaceError()
+
+    for tau in args.tau:
+        configs.append(Config("ours", tau, bench.scene.actor,
+                              lambda f, tau=tau: bench.ours_mesh(tau),
+                              before=lambda tau=tau: m.SetPixelError(tau), extra=ours_extra))
+    targets = _targets(args, bench)
+    nodata = not np.isfinite(heights.z).all()
+    for mth in ("greedy", "uniform", "quadric"):
+        if mth not in methods:
+            continue
+        if over[mth] or (mth == "quadric" and full is None):
+            skip(mth, f"needs about {_gb(mth, heights.nx * heights.ny):.1f} GB (> "
+                 f"{budget_gb:.1f} GB budget)")
+            continue
+        if mth == "greedy" and nodata:
+            skip(mth, "the DEM has nodata samples; vtkGreedyTerrainDecimation has no nodata "
+                 "support")
+            continue
+        for tau, tri in targets.items():
+            t = time.perf_counter()
+            if mth == "greedy":
+                mesh, build = meshes.greedy_mesh(image, tri, args.greedy_budget)
+                if mesh is None:
+                    skip(mth, f"tau {tau:g}: {build}")
+                    continue
+            elif mth == "uniform":
+                mesh = meshes.grid_mesh(heights, meshes.uniform_stride(heights, tri))
+                build = time.perf_counter() - t
+            else:
+                mesh, build = meshes.quadric_mesh(full, heights, tri)
+            out.note(label, f"{mth} tau {tau:g}: {mesh.GetNumberOfPolys()} triangles "
+                     f"(ours' mean {tri}), built in {build:.1f} s")
+            configs.append(Config(mth, tau, bench.add_mesh(mesh), lambda f, mesh=mesh: mesh,
+                                  build_s=build))
+    return configs
+
+
+def _fly(label, args, configs, bench, heights, out):
+    ctx = dict(dem=label, nx=heights.nx, ny=heights.ny)
+    for c in configs:  # warm-up: each method's vertex buffers are uploaded once, untimed
+        if c.before:
+            c.before()
+        bench.show(c.actor)
+        bench.camera(0)
+        bench.render()
+    for f in range(args.frames):
+        reference = None
+        for c in configs:
+            if c.before:
+                c.before()
+            row, depth = bench.frame(c.actor, c.mesh, f, reference, c.extra)
+            if c.method == "brute":
+                reference = depth
+            out.frame(ctx, c.method, c.tau, c.build_s, row)
+        out.flush()
+        print(f"[{label}] frame {f + 1}/{args.frames}", flush=True)

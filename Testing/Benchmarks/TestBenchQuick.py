@@ -1,0 +1,90 @@
+"""geomipmap-bench --quick: the harness runs end to end and its error measure is sane.
+
+Usage: TestBenchQuick.py <path to geomipmap-bench> <scratch folder>. Checks:
+- a missing --dem file: exit status 2 and one line naming it;
+- exit status 0; frames.csv, summary.md and bench.png written, every method present;
+- brute force (the full-resolution mesh) measures 0 px on every frame;
+- ours measures at most its tau on every frame;
+- a deliberately coarse mesh (every 16th sample) measures more than tau = 1 px on the
+  same flight, through the same measure (vtkGeoMipMapScreenError) and camera set-up.
+"""
+
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import types
+
+if len(sys.argv) != 3:
+    sys.exit("usage: TestBenchQuick.py GEOMIPMAP_BENCH SCRATCH_DIR")
+exe, scratch = sys.argv[1], sys.argv[2]
+shutil.rmtree(scratch, ignore_errors=True)
+os.makedirs(scratch)
+p = subprocess.run([exe, "--quick", "--out", scratch], capture_output=True, text=True,
+                   timeout=240)
+failures = []
+bad = subprocess.run([exe, "--dem", os.path.join(scratch, "missing.tif"),
+                      "--out", os.path.join(scratch, "bad")],
+                     capture_output=True, text=True, timeout=60)
+if bad.returncode != 2 or "missing.tif" not in bad.stderr or "Traceback" in bad.stderr:
+    failures.append(f"a missing DEM: exit {bad.returncode}, stderr {bad.stderr!r}")
+if p.returncode != 0:
+    sys.exit(f"FAIL: exit status {p.returncode}\n{p.stdout}\n{p.stderr}")
+for name in ("frames.csv", "summary.md", "bench.png"):
+    path = os.path.join(scratch, name)
+    if not os.path.isfile(path) or os.path.getsize(path) == 0:
+        failures.append(f"{name} missing or empty")
+with open(os.path.join(scratch, "bench.png"), "rb") as f:
+    if f.read(8) != b"\x89PNG\r\n\x1a\n":
+        failures.append("bench.png is not a PNG")
+with open(os.path.join(scratch, "frames.csv"), newline="") as f:
+    rows = list(csv.DictReader(f))
+methods = {r["method"] for r in rows}
+for m in ("brute", "ours", "greedy", "uniform", "quadric"):
+    if m not in methods:
+        failures.append(f"method {m} missing from frames.csv")
+for r in rows:
+    err = float(r["err_max_px"])
+    if r["method"] == "brute" and not err < 1e-6:
+        failures.append(f"brute force frame {r['frame']} measures {err} px, expected 0")
+    if r["method"] == "ours" and not err <= float(r["tau"]):
+        failures.append(f"ours tau {r['tau']} frame {r['frame']} measures {err} px > tau")
+    if int(r["samples_in_view"]) <= 0:
+        failures.append(f"{r['method']} frame {r['frame']}: no samples in view")
+
+# The coarse mesh, through the bench's own pieces (same terrain, flight and camera).
+import geomipmap  # noqa: E402
+from geomipmap_bench import meshes  # noqa: E402
+from geomipmap_fly import paths  # noqa: E402
+from geomipmap_fly.errors import VTKMessages  # noqa: E402
+from geomipmap_fly.terrain import load_terrain  # noqa: E402
+from vtkmodules.vtkRenderingCore import vtkRenderer  # noqa: E402
+
+args = types.SimpleNamespace(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
+                             synthetic_size=513, seed=1)
+image, heights = load_terrain(args, VTKMessages())
+flight = paths.Flight(paths.orbit_path(heights, None), heights, 3, 15.0)
+coarse = meshes.grid_mesh(heights, 16)
+ren = vtkRenderer()
+cam = ren.GetActiveCamera()
+measure = geomipmap.vtkGeoMipMapScreenError()
+measure.SetHeightfield(image)
+measure.SetMesh(coarse)
+measure.SetViewportSize(1280, 720)
+xmin, xmax, ymin, ymax = heights.bounds
+for f in range(3):
+    cam.SetPosition(*flight.positions[f])
+    cam.SetFocalPoint(*flight.focal[f])
+    cam.SetViewUp(0, 0, 1)
+    cam.SetViewAngle(50)
+    ren.ResetCameraClippingRange(xmin, xmax, ymin, ymax, heights.zmin, heights.zmax)
+    measure.SetProjectionMatrix(cam.GetCompositeProjectionTransformMatrix(1280 / 720, -1, 1))
+    if not measure.Compute() or not measure.GetMaximumError() > 1.0:
+        failures.append(f"coarse mesh (stride 16) frame {f} measures "
+                        f"{measure.GetMaximumError()} px, expected > tau = 1 px")
+
+if failures:
+    print("FAIL:\n  " + "\n  ".join(failures))
+    sys.exit(1)
+print(f"ok: {len(rows)} frames; brute 0 px, ours <= tau, stride-16 mesh > 1 px")
