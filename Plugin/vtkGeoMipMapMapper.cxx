@@ -106,23 +106,24 @@ void vtkGeoMipMapMapper::SetBlockSize(int quads)
 //------------------------------------------------------------------------------
 vtkIdType vtkGeoMipMapMapper::GetNumberOfRenderedTriangles() const
 {
-  return static_cast<vtkIdType>(this->Internal->Engine.stats().triangles);
+  const auto& stats = this->Internal->Engine.stats();
+  return this->LastFrameDrawn ? static_cast<vtkIdType>(stats.triangles) : 0;
 }
 int vtkGeoMipMapMapper::GetNumberOfVisibleBlocks() const
 {
-  return this->Internal->Engine.stats().visibleBlocks;
+  return this->LastFrameDrawn ? this->Internal->Engine.stats().visibleBlocks : 0;
 }
 int vtkGeoMipMapMapper::GetNumberOfCulledBlocks() const
 {
-  return this->Internal->Engine.stats().culledBlocks;
+  return this->LastFrameDrawn ? this->Internal->Engine.stats().culledBlocks : 0;
 }
 double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
 {
-  return this->Internal->Engine.stats().maxScreenError;
+  return this->LastFrameDrawn ? this->Internal->Engine.stats().maxScreenError : 0.0;
 }
 bool vtkGeoMipMapMapper::GetIndicesReused() const
 {
-  return this->Internal->Engine.stats().reused;
+  return this->LastFrameDrawn ? this->Internal->Engine.stats().reused : false;
 }
 
 //------------------------------------------------------------------------------
@@ -258,6 +259,10 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   // class header is not installed by Debian's VTK 9.1. Our buffers are still released by
   // ReleaseGraphicsResources when the window or the actor lets go of them.
 
+  // Until the engine has run for this frame, the statistics say "nothing drawn" (an
+  // input or camera error below must not leave the previous frame's figures behind).
+  this->LastFrameDrawn = false;
+  this->LastUpdateTime = this->LastIndexUploadTime = 0.0;
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
   if (!this->Static)
   {
@@ -294,8 +299,9 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   {
     vtkErrorMacro("LOD update failed: " << this->Internal->Engine.lastError());
   }
+  this->LastFrameDrawn = true;
   this->IndicesDirty = this->IndicesDirty || !stats.reused;
-  this->LastIndexUploadTime = 0.0; // accumulated by UploadIndices during this frame
+  // LastIndexUploadTime (0 above) is accumulated by UploadIndices during this frame.
 
   this->CurrentInput = this->Mesh;
   this->UpdateCameraShiftScale(ren, act);

@@ -75,7 +75,10 @@ public:
    * Statistics of the last rendered frame (the last renderer that drew this mapper).
    * LastUpdateTime is the LOD work (cull, select, tessellate) in seconds;
    * MaximumScreenSpaceError is the engine's certified bound in pixels; IndicesReused is
-   * true when the frame's triangles equal the previous frame's.
+   * true when the frame's triangles equal the previous frame's. After a render that
+   * drew nothing because of an error (bad camera, no input) they are 0. When VTK culls the
+   * whole actor (its bounds outside the view) the mapper is not called at all, and they
+   * keep describing the last frame it drew.
    */
   vtkIdType GetNumberOfRenderedTriangles() const;
   int GetNumberOfVisibleBlocks() const;
@@ -135,6 +138,7 @@ protected:
   int NumberOfVertexUploads = 0;
   int NumberOfIndexUploads = 0;
   double LastIndexUploadTime = 0.0;
+  bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
 
   vtkNew<vtkPolyData> Mesh;
   vtkMTimeType MeshInputTime = 0;    // input image MTime the engine was built from

@@ -124,8 +124,11 @@ def degenerate():
     cam.SetViewUp(*direction)
 
 
-run("view-up parallel to the view direction", degenerate,
-    expect_error="camera view-up is zero or parallel to the view direction")
+t_bad, d_bad = run("view-up parallel to the view direction", degenerate,
+                   expect_error="camera view-up is zero or parallel to the view direction")
+# The refused frame must not report the previous frame's statistics.
+check(t_bad == 0 and not d_bad.any() and mapper.GetMaximumScreenSpaceError() == 0.0,
+      "view-up parallel: nothing drawn and the mapper reports 0 triangles (%d)" % t_bad)
 run("camera below the terrain, looking up", lambda: pose((C, C, -5000), (C, C, 0), up=(0, 1, 0)),
     expect_tris=some)
 # Nothing in view: VTK culls the whole actor, so the mapper is not called and its
