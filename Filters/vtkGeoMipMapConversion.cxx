@@ -9,6 +9,7 @@
 #include "vtkPointData.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace
@@ -161,6 +162,15 @@ std::string CameraToView(
   view.viewportWidth = width;
   view.viewportHeight = height;
   return gmm::validateView(view);
+}
+
+std::string CheckPixelError(double tau)
+{
+  if (tau >= 0.0 && std::isfinite(tau))
+    return std::string();
+  char text[80];
+  std::snprintf(text, sizeof text, "PixelError must be a finite number >= 0, got %g", tau);
+  return text;
 }
 
 //------------------------------------------------------------------------------

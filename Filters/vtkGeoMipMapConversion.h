@@ -49,6 +49,12 @@ GEOMIPMAPFILTERS_EXPORT std::string CameraToView(vtkCamera* camera, vtkMatrix4x4
   int width, int height, gmm::View& view);
 
 /**
+ * Why a pixel error (tau) cannot be used by SetPixelError of the mapper and the filter
+ * ("" when it is a finite number >= 0). Both refuse a bad value and keep the old one.
+ */
+GEOMIPMAPFILTERS_EXPORT std::string CheckPixelError(double tau);
+
+/**
  * Unit normal at sample (i, j) from full-resolution central differences (one-sided next
  * to the border or to nodata; (0, 0, 1) when no neighbour is valid).
  */

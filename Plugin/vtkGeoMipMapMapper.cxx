@@ -75,10 +75,10 @@ void vtkGeoMipMapMapper::ModifiedIndicesOnly()
 //------------------------------------------------------------------------------
 void vtkGeoMipMapMapper::SetPixelError(double tau)
 {
-  if (!(tau >= 0.0) || !std::isfinite(tau))
+  const std::string problem = vtkGeoMipMapConversion::CheckPixelError(tau);
+  if (!problem.empty())
   {
-    vtkErrorMacro("PixelError must be a finite number >= 0, got " << tau << "; keeping "
-                                                                  << this->PixelError);
+    vtkErrorMacro(<< problem << "; keeping " << this->PixelError);
     return;
   }
   if (tau != this->PixelError)

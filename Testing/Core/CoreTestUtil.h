@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <numeric>
@@ -426,6 +427,79 @@ inline bool insideFrustum(const MyCamera& c, double x, double y, double z)
   if (!(d >= c.nearD && d <= c.farD))
     return false;
   return px >= 0.0 && px <= c.W && py >= 0.0 && py <= c.H;
+}
+
+// Measured error of a drawn mesh, sample by sample (the independent check behind every
+// certification test). For each finite sample: the vertical distance to the drawn surface
+// (drawn samples only); with a view, for samples inside the frustum, the pixel distance
+// between the sample and the surface point above/below it, projected with MyCamera.
+struct ScreenMeasure
+{
+  std::size_t inFrustum = 0, uncovered = 0, skippedNear = 0, violations = 0;
+  double maxDist = 0.0;     // pixels
+  double maxVertical = 0.0; // metres, over drawn samples
+  std::string first;        // the first uncovered sample or violation, in words
+};
+
+// True when the sample and its 8 neighbours (inside the grid) are finite: such a sample
+// lies in cells whose every triangle is drawable, so it must be covered.
+inline bool awayFromNodata(const gmm::Heightfield& hf, int i, int j)
+{
+  for (int b = std::max(0, j - 1); b <= std::min(hf.ny - 1, j + 1); ++b)
+    for (int a = std::max(0, i - 1); a <= std::min(hf.nx - 1, i + 1); ++a)
+      if (!std::isfinite(hf.height(a, b)))
+        return false;
+  return true;
+}
+
+// Violations are distances above tau * (1 + 1e-6) + 1e-6 px; uncovered counts in-frustum
+// samples away from nodata that no triangle covers.
+inline ScreenMeasure measureScreenError(const gmm::Heightfield& hf,
+  const std::vector<uint32_t>& indices, const gmm::View* view, double tau)
+{
+  ScreenMeasure m;
+  const SurfaceSample surf = sampleSurface(hf, indices);
+  MyCamera cam{};
+  if (view)
+    cam = makeCamera(*view);
+  for (int j = 0; j < hf.ny; ++j)
+    for (int i = 0; i < hf.nx; ++i)
+    {
+      const std::size_t k = hf.index(i, j);
+      const double zp = hf.z[k];
+      if (!std::isfinite(zp))
+        continue;
+      const bool drawn = !std::isnan(surf.z[k]);
+      if (drawn)
+        m.maxVertical = std::max(m.maxVertical, std::fabs(surf.z[k] - zp));
+      const double x = hf.worldX(i), y = hf.worldY(j);
+      if (!view || !insideFrustum(cam, x, y, zp))
+        continue;
+      ++m.inFrustum;
+      if (!drawn)
+      {
+        if (awayFromNodata(hf, i, j) && m.uncovered++ == 0 && m.first.empty())
+          m.first = "in-frustum sample (" + std::to_string(i) + "," + std::to_string(j) + ") not covered";
+        continue;
+      }
+      double px, py, qx, qy;
+      project(cam, x, y, zp, px, py);
+      if (project(cam, x, y, surf.z[k], qx, qy) < cam.nearD)
+      {
+        ++m.skippedNear; // surface point behind the near plane: not projectable
+        continue;
+      }
+      const double dist = std::hypot(qx - px, qy - py);
+      m.maxDist = std::max(m.maxDist, dist);
+      if (dist > tau * (1 + 1e-6) + 1e-6 && m.violations++ == 0 && m.first.empty())
+      {
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "sample (%d,%d): z %.6f surface %.6f -> %.6g px > tau %.6g",
+          i, j, zp, surf.z[k], dist, tau);
+        m.first = buf;
+      }
+    }
+  return m;
 }
 
 } // namespace gmmtest

@@ -23,70 +23,6 @@
 namespace gmmtest
 {
 
-struct FrameMeasure
-{
-  std::size_t inFrustum = 0, uncovered = 0, violations = 0;
-  double maxDist = 0.0;     // pixels
-  double maxVertical = 0.0; // metres, over drawn samples
-  std::string first;
-};
-
-// True when the sample and its 8 neighbours (inside the grid) are finite: such a sample
-// lies in cells whose every triangle is drawable, so it must be covered.
-inline bool awayFromNodata(const gmm::Heightfield& hf, int i, int j)
-{
-  for (int b = std::max(0, j - 1); b <= std::min(hf.ny - 1, j + 1); ++b)
-    for (int a = std::max(0, i - 1); a <= std::min(hf.nx - 1, i + 1); ++a)
-      if (!std::isfinite(hf.height(a, b)))
-        return false;
-  return true;
-}
-
-inline FrameMeasure measureFrame(const gmm::Engine& e, const gmm::View* view, double tau)
-{
-  FrameMeasure m;
-  const gmm::Heightfield& hf = e.heightfield();
-  const SurfaceSample surf = sampleSurface(hf, e.indices());
-  MyCamera cam{};
-  if (view)
-    cam = makeCamera(*view);
-  for (int j = 0; j < hf.ny; ++j)
-    for (int i = 0; i < hf.nx; ++i)
-    {
-      const std::size_t k = hf.index(i, j);
-      const double zp = hf.z[k];
-      if (!std::isfinite(zp))
-        continue;
-      const bool drawn = !std::isnan(surf.z[k]);
-      if (drawn)
-        m.maxVertical = std::max(m.maxVertical, std::fabs(surf.z[k] - zp));
-      const double x = hf.worldX(i), y = hf.worldY(j);
-      if (!view || !insideFrustum(cam, x, y, zp))
-        continue;
-      ++m.inFrustum;
-      if (!drawn)
-      {
-        if (awayFromNodata(hf, i, j) && m.uncovered++ == 0)
-          m.first = "in-frustum sample (" + std::to_string(i) + "," + std::to_string(j) + ") not covered";
-        continue;
-      }
-      double px, py, qx, qy;
-      project(cam, x, y, zp, px, py);
-      if (project(cam, x, y, surf.z[k], qx, qy) < cam.nearD)
-        continue; // surface point behind the near plane: not projectable
-      const double dist = std::hypot(qx - px, qy - py);
-      m.maxDist = std::max(m.maxDist, dist);
-      if (dist > tau * (1 + 1e-6) + 1e-6 && m.violations++ == 0)
-      {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "sample (%d,%d) projects %.6g px from the surface > tau %.6g",
-          i, j, dist, tau);
-        m.first = buf;
-      }
-    }
-  return m;
-}
-
 // No NaN anywhere in the table; finite own errors for every valid level of a block without
 // nodata (Inf there would mean an overflow, not "level not allowed").
 inline void expectSaneErrorTable(const gmm::Engine& e, const std::string& what)
@@ -135,7 +71,7 @@ inline void expectGoodFrame(const gmm::Engine& e, const gmm::View* view, double 
   const MeshCheckResult mesh = checkMesh(hf, qt.colStart, qt.rowStart, e.indices(), opt);
   EXPECT_EQ(mesh.error, "") << what;
   expectSaneErrorTable(e, what);
-  const FrameMeasure m = measureFrame(e, view, tau);
+  const ScreenMeasure m = measureScreenError(hf, e.indices(), view, tau);
   EXPECT_LE(m.maxVertical, st.maxGeometricError * (1 + 1e-6) + 1e-5 * (1 + st.maxGeometricError))
     << what << ": drawn surface further from the samples than the certified geometric bound";
   if (view)

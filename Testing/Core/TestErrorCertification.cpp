@@ -21,7 +21,7 @@ using namespace gmmtest;
 
 namespace
 {
-constexpr double kRelTol = 1e-6, kAbsTol = 1e-6;
+constexpr double kRelTol = 1e-6;
 
 gmm::View randomView(Rng& rng, const gmm::Heightfield& hf, bool parallel)
 {
@@ -76,61 +76,9 @@ gmm::View randomView(Rng& rng, const gmm::Heightfield& hf, bool parallel)
   return v;
 }
 
-struct Measure
+ScreenMeasure measure(const gmm::Engine& e, const gmm::View& view, double tau)
 {
-  std::size_t inFrustum = 0, uncovered = 0, skippedNear = 0, violations = 0;
-  double maxDist = 0.0;       // pixels
-  double maxVertical = 0.0;   // metres, drawn samples
-  std::string firstViolation;
-};
-
-Measure measure(const gmm::Engine& e, const gmm::View& view, double tau)
-{
-  Measure m;
-  const gmm::Heightfield& hf = e.heightfield();
-  const MyCamera cam = makeCamera(view);
-  const SurfaceSample surf = sampleSurface(hf, e.indices());
-  for (int j = 0; j < hf.ny; ++j)
-    for (int i = 0; i < hf.nx; ++i)
-    {
-      const std::size_t k = hf.index(i, j);
-      const double zp = hf.z[k];
-      if (!std::isfinite(zp))
-        continue;
-      const double x = hf.worldX(i), y = hf.worldY(j);
-      if (!std::isnan(surf.z[k]))
-        m.maxVertical = std::max(m.maxVertical, std::fabs(surf.z[k] - zp));
-      if (!insideFrustum(cam, x, y, zp))
-        continue;
-      ++m.inFrustum;
-      if (std::isnan(surf.z[k]))
-      {
-        if (m.uncovered++ == 0 && m.firstViolation.empty())
-          m.firstViolation = "sample (" + std::to_string(i) + "," + std::to_string(j) + ") inside the frustum is not covered";
-        continue;
-      }
-      double px, py, qx, qy;
-      project(cam, x, y, zp, px, py);
-      const double dq = project(cam, x, y, surf.z[k], qx, qy);
-      if (dq < cam.nearD)
-      {
-        ++m.skippedNear;
-        continue;
-      }
-      const double dist = std::hypot(qx - px, qy - py);
-      m.maxDist = std::max(m.maxDist, dist);
-      if (dist > tau * (1 + kRelTol) + kAbsTol)
-      {
-        if (m.violations++ == 0 && m.firstViolation.empty())
-        {
-          char buf[256];
-          std::snprintf(buf, sizeof buf, "sample (%d,%d): z %.6f surface %.6f -> %.6f px > tau %.3f (block level %d)",
-            i, j, zp, surf.z[k], dist, tau, -99);
-          m.firstViolation = buf;
-        }
-      }
-    }
-  return m;
+  return measureScreenError(e.heightfield(), e.indices(), &view, tau);
 }
 
 void describe(std::ostream& os, const gmm::Heightfield& hf, const gmm::View& v, double tau, int maxQ)
@@ -218,7 +166,7 @@ void runCampaign(gmm::ErrorMetric metric, bool assertBound, Totals& T, uint64_t 
         const gmm::FrameStats st = e.update(v, tau);
         ASSERT_EQ(e.lastError(), "");
         ASSERT_EQ(st.triangles * 3, e.indices().size());
-        const Measure m = measure(e, v, tau);
+        const ScreenMeasure m = measure(e, v, tau);
         ++T.frames;
         if (st.triangles < 2 * static_cast<std::size_t>(nx - 1) * (ny - 1) / 2)
           ++T.framesCoarse;
@@ -232,11 +180,11 @@ void runCampaign(gmm::ErrorMetric metric, bool assertBound, Totals& T, uint64_t 
         std::ostringstream what;
         describe(what, hf, v, tau, maxQ);
         // coverage holds for both metrics
-        EXPECT_EQ(m.uncovered, 0u) << what.str() << "\n  " << m.firstViolation;
+        EXPECT_EQ(m.uncovered, 0u) << what.str() << "\n  " << m.first;
         if (assertBound)
         {
           EXPECT_EQ(m.violations, 0u) << what.str() << "\n  measured max " << m.maxDist << " px; "
-                                      << m.firstViolation;
+                                      << m.first;
           EXPECT_LE(st.maxScreenError, tau * (1 + 1e-12)) << what.str();
           // the engine's geometric bound (metres) must hold over every drawn sample
           EXPECT_LE(m.maxVertical, st.maxGeometricError * (1 + kRelTol) + 1e-5) << what.str();
@@ -298,7 +246,7 @@ TEST(ErrorCertification, MeasurementDetectsCoarserMesh)
   v.viewportWidth = 1280;
   v.viewportHeight = 720;
   e.update(v, 16.0);
-  const Measure m = measure(e, v, 1.0);
+  const ScreenMeasure m = measure(e, v, 1.0);
   EXPECT_GT(m.violations, 0u) << "a tau=16 mesh should violate tau=1 somewhere; max " << m.maxDist;
   EXPECT_GT(m.maxDist, 1.0);
 }
