@@ -183,6 +183,10 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
     out.georeferenced = false;
     return std::string();
   }
+  if (!std::all_of(gt, gt + 6, [](double v) { return std::isfinite(v); }))
+  {
+    return "has a non-finite geotransform (origin or pixel size)"; // found by fuzzing
+  }
   if (gt[2] != 0.0 || gt[4] != 0.0 || gt[1] == 0.0 || gt[5] == 0.0)
   {
     return "has a rotated or degenerate geotransform, which is not supported";
@@ -240,6 +244,12 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
     out.y0 = south * linear;
     out.dx = std::abs(gt[1]) * linear;
     out.dy = std::abs(gt[5]) * linear;
+  }
+  // Huge origins or pixel sizes (or latitudes beyond the poles) overflow or flip the metres.
+  if (!(std::isfinite(out.x0) && std::isfinite(out.y0) && std::isfinite(out.dx) &&
+        std::isfinite(out.dy) && out.dx > 0.0 && out.dy > 0.0))
+  {
+    return "has a georeference out of range (origin or pixel size in metres not finite/positive)";
   }
   return std::string();
 }

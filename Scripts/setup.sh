@@ -9,6 +9,10 @@ packages=(cmake ninja-build g++ pkg-config
   libvtk9-dev python3-vtk9 libgdal-dev libgeographiclib-dev libglm-dev libopenimageio-dev
   libgtest-dev libbenchmark-dev python3-numpy python3-matplotlib python3-geographiclib
   xvfb xauth)
+# Callers add packages they need on top (sanitize.sh, fuzz.sh: GEOMIPMAP_EXTRA_PACKAGES,
+# space-separated) and may stop after installing (GEOMIPMAP_SETUP_ONLY=1: no build here).
+read -r -a extra <<<"${GEOMIPMAP_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -20,6 +24,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo_ apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo_ apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+[ -z "${GEOMIPMAP_SETUP_ONLY:-}" ] || exit 0
 
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan, GEOMIPMAP_SANITIZE) into
+# ${GEOMIPMAP_FUZZ_BUILD_DIR:-build-fuzz} and runs each for FUZZ_SECONDS (default 60).
+# Usage: Scripts/fuzz.sh [target...]   targets: engine reader (default both)
+# The growing corpus lives in <build>/corpus/<target> (kept between runs, so long campaigns
+# resume); seeds come from Testing/Fuzz/make_corpus.py and Testing/Fuzz/corpus/<target>.
+# A crash, leak, timeout or invariant violation fails the script; the reproducer is written
+# to <build>/artifacts/<target>/ and the log's tail printed. Full logs: <build>/logs/.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+build=${GEOMIPMAP_FUZZ_BUILD_DIR:-$here/build-fuzz}
+seconds=${FUZZ_SECONDS:-60}
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(engine reader)
+
+GEOMIPMAP_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" GEOMIPMAP_SETUP_ONLY=1 \
+  bash "$here/Scripts/setup.sh"
+
+# No VTK in this tree: the targets need only the engine, TerrainIO.cxx, GDAL and OIIO.
+CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_C_FLAGS_RELEASE="-O1 -g -DNDEBUG" -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g -DNDEBUG" \
+  -DGEOMIPMAP_WITH_VTK=OFF -DGEOMIPMAP_BUILD_BENCHMARKS=OFF -DGEOMIPMAP_BUILD_FUZZERS=ON \
+  -DGEOMIPMAP_SANITIZE=ON >/dev/null
+cmake --build "$build" -j"$(nproc)" --target geomipmapFuzzEngine geomipmapFuzzTerrainReader
+
+/usr/bin/python3 "$here/Testing/Fuzz/make_corpus.py" "$build/seed"
+mkdir -p "$build/logs"
+status=0
+for t in "${targets[@]}"; do
+  case $t in
+    engine) exe=geomipmapFuzzEngine; args=(-max_len=4096) ;;
+    # GDAL may take long on some inputs: bounded input size, time per input and memory.
+    reader) exe=geomipmapFuzzTerrainReader
+      args=(-max_len=65536 -rss_limit_mb=2048 -malloc_limit_mb=1024) ;;
+    *) echo "fuzz.sh: unknown target $t (engine, reader)" >&2; exit 2 ;;
+  esac
+  corpus="$build/corpus/$t" artifacts="$build/artifacts/$t/" log="$build/logs/$t.log"
+  mkdir -p "$corpus" "$artifacts"
+  seeds=("$build/seed/$t")
+  [ ! -d "$here/Testing/Fuzz/corpus/$t" ] || seeds+=("$here/Testing/Fuzz/corpus/$t")
+  # Leak checks stay on; the reader's suppressions name only OpenImageIO (see the file).
+  # fast_unwind_on_malloc=0: full allocation stacks, so a suppression can see the library
+  # frames below libstdc++ (which has no frame pointers).
+  supp="$here/Testing/Fuzz/lsan-$t.supp"
+  lsan="print_suppressions=0"
+  [ ! -f "$supp" ] || lsan="suppressions=$supp:$lsan"
+  fast=1
+  [ "$t" != reader ] || fast=0
+  echo "fuzz.sh: $t for ${seconds}s (log: $log)"
+  if LSAN_OPTIONS="$lsan" ASAN_OPTIONS="fast_unwind_on_malloc=$fast" \
+    UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
+    "$build/Testing/Fuzz/$exe" -max_total_time="$seconds" -timeout=25 -print_final_stats=1 \
+    -artifact_prefix="$artifacts" "${args[@]}" "$corpus" "${seeds[@]}" >"$log" 2>&1; then
+    grep -E '^stat::number_of_executed_units|^stat::average_exec_per_sec|^Done' "$log" || true
+    echo "fuzz.sh: $t: no crash; corpus $(find "$corpus" -type f | wc -l) files"
+  else
+    status=1
+    echo "fuzz.sh: $t FAILED; reproducer(s): $(ls "$artifacts")" >&2
+    grep -v -E '^(ERROR|Warning) [0-9]+:|Not a TIFF|^libpng ' "$log" | tail -60 >&2
+  fi
+done
+exit $status

@@ -1,0 +1,112 @@
+// libFuzzer target: the reader's byte front ends (Filters/TerrainIO.cxx: GDAL and OpenImageIO
+// open paths, header and size checks, nodata, terrain-RGB decoding), through gmm::readTerrain,
+// the lowest entry point that takes a file. The first input byte picks the file name (which
+// picks GDAL or OpenImageIO and, for .hgt, the SRTM driver) and the options; the rest is
+// written to that file. TerrainIO.cxx is compiled into this target, so our code is
+// instrumented; GDAL and OpenImageIO are the system's (not instrumented).
+//
+// Checked: a read either fails with a message, or returns a raster whose size, spacing and
+// height count agree (and the header-only read agrees with the full read).
+#include "TerrainIO.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <cerrno>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace
+{
+
+[[noreturn]] void violation(const std::string& what, const std::string& path)
+{
+  std::fprintf(stderr, "geomipmap reader invariant violated (%s): %s\n", path.c_str(), what.c_str());
+  std::abort();
+}
+
+// Names as users have them: GDAL picks most drivers from content, SRTMHGT needs the tile name,
+// OpenImageIO is chosen by the image extension.
+const char* const kNames[] = { "dem.tif", "dem.asc", "N42E001.hgt", "terrain.png", "dem.png",
+  "dem.pgm", "dem.dem", "dem.bin" };
+
+std::string& scratchPath()
+{
+  static std::string dir;
+  return dir;
+}
+
+// One folder per process (libFuzzer may run several jobs), removed at exit.
+const std::string& scratchDir()
+{
+  std::string& dir = scratchPath();
+  if (dir.empty())
+  {
+    const char* base = std::getenv("TMPDIR");
+    dir = std::string(base && *base ? base : "/tmp") + "/geomipmap-fuzz-" +
+      std::to_string(static_cast<long>(getpid()));
+    if (mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+      violation("cannot create scratch folder", dir);
+    std::atexit([] { rmdir(scratchPath().c_str()); });
+  }
+  return dir;
+}
+
+void checkRaster(const gmm::TerrainRaster& r, bool withHeights, const std::string& path)
+{
+  if (r.nx < 1 || r.ny < 1)
+    violation("success with size " + std::to_string(r.nx) + " x " + std::to_string(r.ny), path);
+  if (!(std::isfinite(r.dx) && r.dx > 0 && std::isfinite(r.dy) && r.dy > 0))
+    violation("success with non-positive or non-finite spacing", path);
+  if (!std::isfinite(r.x0) || !std::isfinite(r.y0))
+    violation("success with non-finite origin", path);
+  const std::size_t n = static_cast<std::size_t>(r.nx) * static_cast<std::size_t>(r.ny);
+  if (withHeights && r.z.size() != n)
+    violation("height count " + std::to_string(r.z.size()) + " != nx * ny", path);
+  if (withHeights)
+    for (float z : r.z)
+      if (std::isinf(z))
+        violation("infinite height (nodata must be NaN)", path);
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
+{
+  if (size < 2)
+    return 0;
+  const uint8_t sel = data[0];
+  const std::string path = scratchDir() + "/" + kNames[sel % (sizeof(kNames) / sizeof(kNames[0]))];
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f)
+    violation("cannot write the input file", path);
+  std::fwrite(data + 1, 1, size - 1, f);
+  std::fclose(f);
+
+  gmm::TerrainReadOptions opt;
+  opt.terrainRGB = (sel >> 3) & 1;
+  opt.heightScale = ((sel >> 4) & 1) ? -0.5 : 1.0;
+  opt.heightOffset = ((sel >> 5) & 1) ? 100.0 : 0.0;
+  opt.spacing = ((sel >> 6) & 1) ? 30.0 : 1.0;
+
+  gmm::TerrainRaster header;
+  const std::string headerErr = gmm::readTerrainHeader(path, opt, header);
+  if (headerErr.empty())
+    checkRaster(header, false, path);
+  gmm::TerrainRaster full;
+  const std::string err = gmm::readTerrain(path, opt, full, [&](double p) {
+    if (!(p >= 0.0 && p <= 1.0))
+      violation("progress outside [0, 1]", path);
+  });
+  if (err.empty())
+  {
+    checkRaster(full, true, path);
+    if (!headerErr.empty())
+      violation("header read failed (" + headerErr + ") but the full read succeeded", path);
+    if (header.nx != full.nx || header.ny != full.ny)
+      violation("header and full read disagree on the size", path);
+  }
+  std::remove(path.c_str());
+  return 0;
+}
