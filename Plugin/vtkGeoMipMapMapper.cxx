@@ -164,13 +164,8 @@ bool vtkGeoMipMapMapper::UpdateMesh(vtkImageData* image)
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(n);
-  vtkNew<vtkFloatArray> tcoords;
-  tcoords->SetName("TCoords");
-  tcoords->SetNumberOfComponents(2);
-  tcoords->SetNumberOfTuples(n);
   double* p = xyz->GetPointer(0);
   float* nn = normals->GetPointer(0);
-  float* tc = tcoords->GetPointer(0);
   double zmin = std::numeric_limits<double>::max(), zmax = -zmin;
   for (float z : h.z)
   {
@@ -181,7 +176,6 @@ bool vtkGeoMipMapMapper::UpdateMesh(vtkImageData* image)
     }
   }
   const double zfill = zmin <= zmax ? zmin : 0.0;
-  const double su = h.nx > 1 ? 1.0 / (h.nx - 1) : 0.0, sv = h.ny > 1 ? 1.0 / (h.ny - 1) : 0.0;
   for (int j = 0; j < h.ny; ++j)
   {
     for (int i = 0; i < h.nx; ++i)
@@ -194,8 +188,6 @@ bool vtkGeoMipMapMapper::UpdateMesh(vtkImageData* image)
       p[3 * k + 1] = h.worldY(j);
       p[3 * k + 2] = std::isfinite(z) ? z : zfill;
       vtkGeoMipMapConversion::SampleNormal(h, i, j, nn + 3 * k);
-      tc[2 * k] = static_cast<float>(i * su);
-      tc[2 * k + 1] = static_cast<float>(j * sv);
     }
   }
   vtkNew<vtkPoints> points;
@@ -203,7 +195,6 @@ bool vtkGeoMipMapMapper::UpdateMesh(vtkImageData* image)
   this->Mesh->Initialize();
   this->Mesh->SetPoints(points);
   this->Mesh->GetPointData()->SetNormals(normals);
-  this->Mesh->GetPointData()->SetTCoords(tcoords);
   if (vtkDataArray* s = image->GetPointData()->GetScalars())
   {
     this->Mesh->GetPointData()->SetScalars(s); // shared, not copied: colours via the LUT
@@ -315,8 +306,50 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::UpdateTextureCoordinates(bool wanted)
+{
+  vtkPointData* pd = this->Mesh->GetPointData();
+  const vtkIdType n = this->Mesh->GetNumberOfPoints();
+  if (!wanted || n == 0)
+  {
+    if (pd->GetTCoords())
+    {
+      pd->RemoveArray("TCoords");
+    }
+    return;
+  }
+  if (pd->GetTCoords())
+  {
+    return;
+  }
+  // 0..1 over the extent, (i, j) order: a texture image maps onto the DEM as on the input.
+  const gmm::Heightfield& h = this->Internal->Engine.heightfield();
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("TCoords");
+  tcoords->SetNumberOfComponents(2);
+  tcoords->SetNumberOfTuples(n);
+  float* tc = tcoords->GetPointer(0);
+  const double su = h.nx > 1 ? 1.0 / (h.nx - 1) : 0.0, sv = h.ny > 1 ? 1.0 / (h.ny - 1) : 0.0;
+  for (int j = 0; j < h.ny; ++j)
+  {
+    for (int i = 0; i < h.nx; ++i)
+    {
+      const std::size_t k = h.index(i, j);
+      tc[2 * k] = static_cast<float>(i * su);
+      tc[2 * k + 1] = static_cast<float>(j * sv);
+    }
+  }
+  pd->SetTCoords(tcoords);
+}
+
+//------------------------------------------------------------------------------
 bool vtkGeoMipMapMapper::GetNeedToRebuildBufferObjects(vtkRenderer*, vtkActor* act)
 {
+  // Texture coordinates only while the actor is textured: 8 bytes a sample in the mesh
+  // and again in the vertex buffer that an untextured scene never reads. Adding or
+  // removing them changes the mesh's MTime, hence the rebuild decided below.
+  this->UpdateTextureCoordinates(
+    act->GetTexture() != nullptr || act->GetProperty()->GetNumberOfTextures() > 0);
   // Same watch list as vtkOpenGLPolyDataMapper, except mapper changes that only alter
   // the indices (PixelError, BlockSize).
   this->TempState.Clear();

@@ -8,8 +8,9 @@
  *
  * When the input changes (MTime), the mapper converts it to a gmm::Heightfield, builds the
  * engine (quadtree and error table) and one vtkPolyData over ALL samples with smooth
- * full-resolution normals, the input scalars (for LUT colouring) and texture coordinates
- * 0..1 over the extent; its vertex buffers are uploaded once. Every render it converts
+ * full-resolution normals, the input scalars (for LUT colouring) and, only while the
+ * actor has a texture, texture coordinates 0..1 over the extent; its vertex buffers are
+ * uploaded once. Every render it converts
  * the renderer's active camera and viewport to a gmm::View in the data's coordinates
  * (through the inverse of the actor's matrix), runs the engine with PixelError and draws
  * the selected triangles. Only the triangle index buffer is re-uploaded, and only when
@@ -128,6 +129,8 @@ protected:
 
   // Rebuilds heightfield, engine and mesh when the input image or block size changed.
   bool UpdateMesh(vtkImageData* image);
+  // Adds texture coordinates (0..1 over the extent) to the mesh, or drops them.
+  void UpdateTextureCoordinates(bool wanted);
   void UploadIndices(vtkActor* act);
   // Marks the mapper modified for a change that needs new indices but no new VBOs.
   void ModifiedIndicesOnly();

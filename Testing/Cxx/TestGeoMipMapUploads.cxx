@@ -1,13 +1,16 @@
 // Buffer traffic of vtkGeoMipMapMapper: the vertex buffers are uploaded once per input
 // change (never for a camera move or a new PixelError), and the triangle index buffer is
 // uploaded only when the engine's indices change (never for a static camera). Also checks
-// that two renderers with different cameras sharing the mapper each get their own LOD.
+// that two renderers with different cameras sharing the mapper each get their own LOD, and
+// that texture coordinates are built (one vertex upload) only while the actor is textured.
 #include "GeoMipMapTestUtilities.h"
 #include "vtkGeoMipMapMapper.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkImageData.h"
 #include "vtkRenderer.h"
+#include "vtkTexture.h"
 
 #include <iostream>
 
@@ -96,6 +99,58 @@ int TestGeoMipMapUploads(int, char*[])
   win->Render();
   CHECK(mapper->GetNumberOfVertexUploads() == v0 + 1);
 
+  // Texture coordinates only while textured: adding a texture costs one vertex upload and
+  // the texture shows; removing it costs one more, and then nothing is re-uploaded.
+  mapper->ScalarVisibilityOff(); // a colouring change: vertex buffers rebuilt once
+  win->Render();
+  const int v1 = mapper->GetNumberOfVertexUploads();
+  CHECK(v1 == v0 + 2);
+  // Pixels clearly green (the texture's colour): none on the untextured grey surface.
+  auto greenPixels = [&win]() {
+    auto img = gmmtest::Grab(win);
+    int dims[3];
+    img->GetDimensions(dims);
+    int green = 0;
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        const unsigned char* p = gmmtest::Pixel(img, x, y);
+        green += (p[1] > 40 && p[1] > 2 * p[0] && p[1] > 2 * p[2]) ? 1 : 0;
+      }
+    return green;
+  };
+  const int greenBefore = greenPixels();
+  vtkNew<vtkImageData> checker;
+  checker->SetDimensions(8, 8, 1);
+  checker->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+    {
+      unsigned char* p = static_cast<unsigned char*>(checker->GetScalarPointer(x, y, 0));
+      const bool dark = (x + y) % 2 == 1;
+      p[0] = p[2] = 20;
+      p[1] = dark ? 90 : 230;
+    }
+  vtkNew<vtkTexture> texture;
+  texture->SetInputData(checker);
+  actor->SetTexture(texture);
+  win->Render();
+  const int greenTextured = greenPixels();
+  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 1);
+  win->Render();
+  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 1);
+  actor->SetTexture(nullptr);
+  win->Render();
+  win->Render();
+  const int greenAfter = greenPixels();
+  std::cout << "green pixels: untextured " << greenBefore << ", textured " << greenTextured
+            << ", texture removed " << greenAfter << "; vertex uploads "
+            << mapper->GetNumberOfVertexUploads() - v1 << " for adding and removing it\n";
+  CHECK(greenBefore == 0 && greenAfter == 0);
+  CHECK(greenTextured > 400 * 300 / 10);
+  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 2);
+  mapper->ScalarVisibilityOn();
+
   // Two renderers, different cameras, one mapper: the LOD follows the camera drawn.
   // The right one sees the whole terrain from far above (few triangles), the left one
   // is close to the ground.
@@ -127,6 +182,6 @@ int TestGeoMipMapUploads(int, char*[])
   CHECK(farTris < nearTris);
   CHECK(mapper->GetNumberOfIndexUploads() - i2 == 2);
   CHECK(mapper->GetNumberOfRenderedTriangles() == farTris);
-  CHECK(mapper->GetNumberOfVertexUploads() == v0 + 1);
+  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 3);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
