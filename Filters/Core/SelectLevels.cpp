@@ -78,19 +78,6 @@ void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8
   }
 }
 
-// |q| also when |q|^2 overflows (an eye 1e200 m away is absurd but finite: it must still
-// give a tiny positive factor, not Inf / Inf = NaN).
-double robustLength(const glm::dvec3& q)
-{
-  const double d2 = glm::dot(q, q);
-  if (std::isfinite(d2))
-  {
-    return std::sqrt(d2);
-  }
-  const double s = std::max({ std::abs(q.x), std::abs(q.y), std::abs(q.z) });
-  return s * glm::length(q / s);
-}
-
 // selectLevels reads a zero factor as "culled", so a visible block keeps a positive one
 // even when the exact value underflows.
 double visibleFactor(double f)

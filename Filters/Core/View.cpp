@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace gmm
@@ -16,25 +17,33 @@ bool finite3(const glm::dvec3& v)
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// Unit vector along v, also when |v|^2 overflows or underflows a double (forward =
-// (0, 1e200, 0) is a valid direction; glm::normalize would give NaN or Inf). Zero for zero.
-glm::dvec3 unit(const glm::dvec3& v)
-{
-  const double s = std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
-  if (!(s > 0.0))
-  {
-    return glm::dvec3(0.0);
-  }
-  const glm::dvec3 w = v / s; // largest component is now +-1
-  return w / glm::length(w);
-}
-
 glm::dvec4 plane(const glm::dvec3& normal, const glm::dvec3& through)
 {
   const glm::dvec3 n = glm::normalize(normal);
   return glm::dvec4(n, -glm::dot(n, through));
 }
 } // namespace
+
+double robustLength(const glm::dvec3& v)
+{
+  const double d2 = glm::dot(v, v);
+  if (std::isfinite(d2) && d2 >= std::numeric_limits<double>::min())
+  {
+    return std::sqrt(d2); // the common case: |v|^2 neither overflowed nor underflowed
+  }
+  const double s = std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
+  if (s == 0.0)
+  {
+    return 0.0;
+  }
+  return s * glm::length(v / s); // largest component +-1: no overflow, no underflow
+}
+
+glm::dvec3 robustUnit(const glm::dvec3& v)
+{
+  const double l = robustLength(v);
+  return l > 0.0 ? v / l : glm::dvec3(0.0);
+}
 
 std::string validateView(const View& v)
 {
@@ -43,12 +52,12 @@ std::string validateView(const View& v)
   {
     return "camera position, direction and view-up must be finite";
   }
-  const glm::dvec3 f = unit(v.forward);
+  const glm::dvec3 f = robustUnit(v.forward);
   if (f == glm::dvec3(0.0))
   {
     return "camera direction has zero length";
   }
-  const glm::dvec3 u = unit(v.up);
+  const glm::dvec3 u = robustUnit(v.up);
   if (u == glm::dvec3(0.0) || glm::length(glm::cross(f, u)) < 1e-9)
   {
     return "camera view-up is zero or parallel to the view direction";
@@ -82,8 +91,8 @@ std::string validateView(const View& v)
 CameraFrame cameraFrameOf(const View& v)
 {
   CameraFrame c;
-  c.forward = unit(v.forward);
-  c.right = unit(glm::cross(c.forward, unit(v.up)));
+  c.forward = robustUnit(v.forward);
+  c.right = robustUnit(glm::cross(c.forward, robustUnit(v.up)));
   c.up = glm::cross(c.right, c.forward);
   return c;
 }

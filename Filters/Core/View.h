@@ -28,6 +28,13 @@ struct View
 // bottom, top, near, far. Normals are unit length.
 using Frustum = std::array<glm::dvec4, 6>;
 
+// |v| also when |v|^2 would overflow or underflow a double (a direction (0, 1e200, 0), an
+// eye 1e200 m away); 0 for the zero vector, NaN for NaN.
+double robustLength(const glm::dvec3& v);
+
+// v / |v| by robustLength; the zero vector for zero.
+glm::dvec3 robustUnit(const glm::dvec3& v);
+
 // Checks a view. Empty string when usable, else what is wrong (non-finite values, zero
 // forward, up zero or parallel to forward, field of view outside (0, 180), parallel scale
 // <= 0, near <= 0 or far <= near, viewport below 1 x 1). The field of view and the parallel
