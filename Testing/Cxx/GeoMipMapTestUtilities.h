@@ -13,6 +13,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
@@ -101,6 +102,43 @@ inline vtkSmartPointer<vtkPolyData> FullResolutionMesh(vtkImageData* image)
   normals->ConsistencyOff();
   normals->Update();
   return normals->GetOutput();
+}
+
+// An off-screen window of w x h pixels without multisampling (deterministic pixels for
+// image comparison), holding `ren` when given.
+inline vtkSmartPointer<vtkRenderWindow> OffscreenWindow(int w, int h, vtkRenderer* ren = nullptr)
+{
+  auto win = vtkSmartPointer<vtkRenderWindow>::New();
+  win->SetOffScreenRendering(1);
+  win->SetMultiSamples(0);
+  win->SetSize(w, h);
+  if (ren)
+  {
+    win->AddRenderer(ren);
+  }
+  return win;
+}
+
+// An RGB checkerboard texture image of size x size texels, squares of `cell` texels; the
+// square holding texel (0, 0) has colour a, its neighbours colour b.
+inline vtkSmartPointer<vtkImageData> Checkerboard(
+  int size, int cell, const unsigned char a[3], const unsigned char b[3])
+{
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->SetDimensions(size, size, 1);
+  img->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      unsigned char* p = static_cast<unsigned char*>(img->GetScalarPointer(x, y, 0));
+      const unsigned char* c = ((x / cell) + (y / cell)) % 2 == 0 ? a : b;
+      p[0] = c[0];
+      p[1] = c[1];
+      p[2] = c[2];
+    }
+  }
+  return img;
 }
 
 // The window's current RGB pixels.

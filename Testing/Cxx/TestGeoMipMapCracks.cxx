@@ -45,11 +45,7 @@ int TestGeoMipMapCracks(int, char*[])
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(1, 0, 1);
   ren->AddActor(actor);
-  vtkNew<vtkRenderWindow> win;
-  win->SetOffScreenRendering(1);
-  win->SetMultiSamples(0);
-  win->SetSize(W, H);
-  win->AddRenderer(ren);
+  auto win = gmmtest::OffscreenWindow(W, H, ren);
 
   // Oblique views from around the terrain (centre 3840, 3840), low and high.
   const double views[][6] = { { -2000, -3000, 4500, 3840, 3840, 800 },

@@ -149,11 +149,7 @@ int TestGeoMipMapFilterAgreement(int, char*[])
   actor->SetMapper(mapper);
   vtkNew<vtkRenderer> ren;
   ren->AddActor(actor);
-  vtkNew<vtkRenderWindow> win;
-  win->SetOffScreenRendering(1);
-  win->SetMultiSamples(0);
-  win->SetSize(W, H);
-  win->AddRenderer(ren);
+  auto win = gmmtest::OffscreenWindow(W, H, ren);
   SetCamera(ren->GetActiveCamera(), 0, 0);
   ren->ResetCameraClippingRange();
   win->Render();

@@ -42,11 +42,7 @@ int TestGeoMipMapStHelens(int argc, char* argv[])
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.1, 0.1, 0.2);
   ren->AddActor(actor);
-  vtkNew<vtkRenderWindow> win;
-  win->SetOffScreenRendering(1);
-  win->SetMultiSamples(0);
-  win->SetSize(400, 300);
-  win->AddRenderer(ren);
+  auto win = gmmtest::OffscreenWindow(400, 300, ren);
   ren->ResetCamera();
   vtkCamera* cam = ren->GetActiveCamera();
   cam->Elevation(-55);

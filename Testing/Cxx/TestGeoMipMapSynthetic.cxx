@@ -25,22 +25,9 @@ int TestGeoMipMapSynthetic(int argc, char* argv[])
   source->SetAmplitude(2000.0);
 
   // Texture: a 16 x 16 red/white checkerboard over the whole extent.
-  vtkNew<vtkImageData> checker;
-  checker->SetDimensions(256, 256, 1);
-  checker->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  for (int y = 0; y < 256; ++y)
-  {
-    for (int x = 0; x < 256; ++x)
-    {
-      unsigned char* p = static_cast<unsigned char*>(checker->GetScalarPointer(x, y, 0));
-      const bool white = ((x / 16) + (y / 16)) % 2 == 0;
-      p[0] = 230;
-      p[1] = white ? 230 : 40;
-      p[2] = white ? 230 : 40;
-    }
-  }
+  const unsigned char white[3] = { 230, 230, 230 }, red[3] = { 230, 40, 40 };
   vtkNew<vtkTexture> texture;
-  texture->SetInputData(checker);
+  texture->SetInputData(gmmtest::Checkerboard(256, 16, white, red));
   texture->InterpolateOn();
 
   vtkNew<vtkGeoMipMapMapper> textured;
@@ -64,10 +51,7 @@ int TestGeoMipMapSynthetic(int argc, char* argv[])
   right->RotateZ(30);
   right->SetPosition(1000, -500, 200);
 
-  vtkNew<vtkRenderWindow> win;
-  win->SetOffScreenRendering(1);
-  win->SetMultiSamples(0);
-  win->SetSize(400, 300);
+  auto win = gmmtest::OffscreenWindow(400, 300);
   vtkNew<vtkRenderer> r1, r2;
   r1->SetViewport(0, 0, 0.5, 1);
   r2->SetViewport(0.5, 0, 1, 1);

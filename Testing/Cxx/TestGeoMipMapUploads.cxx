@@ -34,10 +34,7 @@ int TestGeoMipMapUploads(int, char*[])
   actor->SetMapper(mapper);
   vtkNew<vtkRenderer> ren;
   ren->AddActor(actor);
-  vtkNew<vtkRenderWindow> win;
-  win->SetOffScreenRendering(1);
-  win->SetSize(400, 300);
-  win->AddRenderer(ren);
+  auto win = gmmtest::OffscreenWindow(400, 300, ren);
   vtkCamera* cam = ren->GetActiveCamera();
   cam->SetPosition(-2000, -3000, 4000);
   cam->SetFocalPoint(3840, 3840, 700);
@@ -120,19 +117,9 @@ int TestGeoMipMapUploads(int, char*[])
     return green;
   };
   const int greenBefore = greenPixels();
-  vtkNew<vtkImageData> checker;
-  checker->SetDimensions(8, 8, 1);
-  checker->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 8; ++x)
-    {
-      unsigned char* p = static_cast<unsigned char*>(checker->GetScalarPointer(x, y, 0));
-      const bool dark = (x + y) % 2 == 1;
-      p[0] = p[2] = 20;
-      p[1] = dark ? 90 : 230;
-    }
+  const unsigned char light[3] = { 20, 230, 20 }, dark[3] = { 20, 90, 20 };
   vtkNew<vtkTexture> texture;
-  texture->SetInputData(checker);
+  texture->SetInputData(gmmtest::Checkerboard(8, 1, light, dark));
   actor->SetTexture(texture);
   win->Render();
   const int greenTextured = greenPixels();
