@@ -6,10 +6,10 @@
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkObject.h"
 #include "vtkPointData.h"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 namespace
@@ -164,13 +164,20 @@ std::string CameraToView(
   return gmm::validateView(view);
 }
 
-std::string CheckPixelError(double tau)
+bool AcceptPixelError(vtkObject* self, double tau, double& current)
 {
-  if (tau >= 0.0 && std::isfinite(tau))
-    return std::string();
-  char text[80];
-  std::snprintf(text, sizeof text, "PixelError must be a finite number >= 0, got %g", tau);
-  return text;
+  if (!(tau >= 0.0 && std::isfinite(tau)))
+  {
+    vtkErrorWithObjectMacro(
+      self, "PixelError must be a finite number >= 0, got " << tau << "; keeping " << current);
+    return false;
+  }
+  if (tau == current)
+  {
+    return false;
+  }
+  current = tau;
+  return true;
 }
 
 //------------------------------------------------------------------------------

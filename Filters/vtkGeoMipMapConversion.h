@@ -22,6 +22,7 @@ class vtkCamera;
 class vtkDataArray;
 class vtkImageData;
 class vtkMatrix4x4;
+class vtkObject;
 
 namespace vtkGeoMipMapConversion
 {
@@ -49,10 +50,11 @@ GEOMIPMAPFILTERS_EXPORT std::string CameraToView(vtkCamera* camera, vtkMatrix4x4
   int width, int height, gmm::View& view);
 
 /**
- * Why a pixel error (tau) cannot be used by SetPixelError of the mapper and the filter
- * ("" when it is a finite number >= 0). Both refuse a bad value and keep the old one.
+ * The SetPixelError rule of the mapper and the filter: a finite tau >= 0 is stored in
+ * `current` and true is returned when it differs (the caller then marks itself modified);
+ * anything else is refused with an error reported by `self`, and `current` is kept.
  */
-GEOMIPMAPFILTERS_EXPORT std::string CheckPixelError(double tau);
+GEOMIPMAPFILTERS_EXPORT bool AcceptPixelError(vtkObject* self, double tau, double& current);
 
 /**
  * Unit normal at sample (i, j) from full-resolution central differences (one-sided next

@@ -198,15 +198,8 @@ int vtkGeoMipMapFilter::RequestData(
 //------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetPixelError(double tau)
 {
-  const std::string problem = vtkGeoMipMapConversion::CheckPixelError(tau);
-  if (!problem.empty())
+  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
   {
-    vtkErrorMacro(<< problem << "; keeping " << this->PixelError);
-    return;
-  }
-  if (tau != this->PixelError)
-  {
-    this->PixelError = tau;
     this->Modified();
   }
 }
