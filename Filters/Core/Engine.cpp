@@ -36,13 +36,9 @@ std::string Engine::setHeightfield(Heightfield hf, int maxBlockQuads, int thread
   blockTriangles_.clear();
   stats_ = FrameStats();
   lastError_ = validateHeightfield(hf);
-  if (lastError_.empty() && maxBlockQuads < 4)
+  if (lastError_.empty())
   {
-    // Below 4, halving can leave one-quad-wide blocks between neighbours, which the
-    // thin-block shape does not stitch.
-    std::ostringstream why;
-    why << "block size " << maxBlockQuads << " is below the minimum of 4 quads";
-    lastError_ = why.str();
+    lastError_ = validateBlockSize(maxBlockQuads);
   }
   if (!lastError_.empty())
   {
@@ -71,10 +67,23 @@ const FrameStats& Engine::update(const View& view, double tau)
     levels_.assign(qt_.blockCount(), -1);
     return finishFrame(nullptr);
   }
-  cullBlocks(qt_, frustumOf(view), visible_);
-  projectionFactors(qt_, view, visible_, metric_, factor_);
+  const glm::dmat4 toWorld = heightfieldToWorld(view, hf_.z0, heightScale_);
+  cullBlocks(qt_, transformPlanes(frustumOf(view), toWorld), visible_);
+  projectionFactors(qt_, view, toWorld, visible_, metric_, factor_);
   selectLevels(qt_, table_, factor_, tau, levels_);
   return finishFrame(&factor_);
+}
+
+std::string Engine::setHeightScale(double scale)
+{
+  if (!(scale > 0.0 && std::isfinite(scale)))
+  {
+    std::ostringstream why;
+    why << "height scale " << scale << " must be finite and > 0";
+    return why.str();
+  }
+  heightScale_ = scale;
+  return std::string();
 }
 
 const FrameStats& Engine::updateForError(double maxError)
@@ -91,7 +100,8 @@ const FrameStats& Engine::updateForError(double maxError)
     levels_.assign(qt_.blockCount(), -1);
     return finishFrame(nullptr);
   }
-  selectLevelsForError(qt_, table_, maxError, levels_);
+  // The table holds stored-height errors; the bound is in the scaled surface's units.
+  selectLevelsForError(qt_, table_, maxError / heightScale_, levels_);
   return finishFrame(nullptr);
 }
 
@@ -134,8 +144,8 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
     if (levels_[b] >= 0)
     {
       ++s.visibleBlocks;
-      const double e = blockCertifiedError(qt_, table_, levels_, b);
-      s.maxGeometricError = std::max(s.maxGeometricError, e);
+      const double e = blockCertifiedError(qt_, table_, levels_, b); // stored-height units
+      s.maxGeometricError = std::max(s.maxGeometricError, e * heightScale_);
       if (factor && e > 0.0) // e == 0 with an infinite factor would give NaN
       {
         s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);

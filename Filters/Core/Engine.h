@@ -26,7 +26,7 @@ struct FrameStats
   int culledBlocks = 0;
   std::size_t triangles = 0;
   double maxScreenError = 0.0;   // certified bound, pixels (view mode)
-  double maxGeometricError = 0.0; // certified bound, metres
+  double maxGeometricError = 0.0; // certified bound, data units (metres x height scale)
   bool reused = false;           // indices identical to the previous frame's, not regenerated
   int blocksRetessellated = 0;   // blocks whose triangles were regenerated this frame
 };
@@ -34,11 +34,12 @@ struct FrameStats
 class Engine
 {
 public:
-  // Validates `hf` (validateHeightfield), builds the quadtree (leaves at most maxBlockQuads
-  // quads a side, >= 4) and the error table. Returns "" on success or the reason it failed
-  // (the engine is then empty). +-Inf heights become nodata (NaN) in the engine's copy. A DEM
-  // that is all nodata is accepted and draws nothing (zero triangles, no error): a void tile
-  // is valid data, not a mistake.
+  // Validates `hf` (validateHeightfield) and the block size (validateBlockSize), builds
+  // the quadtree (leaves at most maxBlockQuads quads a side) and the error table. Returns ""
+  // on success or the reason it failed (the engine is then empty). +-Inf heights become
+  // nodata (NaN); external heights are shared as they are, or copied first when they hold
+  // an infinity (infinitiesToNodata). A DEM that is all nodata is accepted and draws
+  // nothing (zero triangles, no error): a void tile is valid data, not a mistake.
   std::string setHeightfield(Heightfield hf, int maxBlockQuads = 64, int threads = 0);
 
   // One frame for a camera. Returns the frame's statistics; on a bad view (validateView) or
@@ -48,8 +49,15 @@ public:
   // that sees no block (e.g. a far plane short of the terrain) is not an error.
   const FrameStats& update(const View& view, double tau);
 
-  // View-independent mode: every block at the coarsest level within maxError metres
-  // (finite and >= 0, else refused like a bad tau).
+  // Vertical exaggeration: the drawn surface is z0 + scale * height. Culling, the bound and
+  // view-independent errors all see the scaled surface; the tables are not rebuilt (errors
+  // scale linearly). Returns "" or, for a scale that is not finite and > 0, the reason (the
+  // previous scale is kept).
+  std::string setHeightScale(double scale);
+  double heightScale() const { return heightScale_; }
+
+  // View-independent mode: every block at the coarsest level within maxError (data units,
+  // i.e. of the scaled surface; finite and >= 0, else refused like a bad tau).
   const FrameStats& updateForError(double maxError);
 
   // Tessellates an explicit level assignment (-1 = not drawn); for tests and tools. A list
@@ -76,6 +84,7 @@ private:
   Quadtree qt_;
   ErrorTable table_;
   ErrorMetric metric_ = ErrorMetric::Certified;
+  double heightScale_ = 1.0;
 
   std::vector<uint8_t> visible_;
   std::vector<double> factor_;

@@ -51,7 +51,8 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
 {
   const int64_t nx = hf.nx;
   const int64_t ax = a % nx, ay = a / nx, bx = b % nx, by = b / nx, cx = c % nx, cy = c / nx;
-  const double za = hf.z[a], zb = hf.z[b], zc = hf.z[c];
+  const float* z = hf.heights();
+  const double za = z[a], zb = z[b], zc = z[c];
   if (std::isnan(za) || std::isnan(zb) || std::isnan(zc))
   {
     return strict ? kInf : 0.0f;
@@ -96,7 +97,7 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
         hi = lo - 1;
       }
     }
-    const float* row = hf.z.data() + j * nx;
+    const float* row = z + j * nx;
     for (int64_t i = lo; i <= hi; ++i)
     {
       const float h = row[i];

@@ -1,5 +1,6 @@
 #include "Heightfield.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -22,7 +23,7 @@ std::string validateHeightfield(const Heightfield& hf)
     why << "heightfield has " << count << " samples; at most 2^32 - 1 can be indexed";
     return why.str();
   }
-  if (hf.z.size() != count)
+  if (hf.external == nullptr && hf.z.size() != count)
   {
     why << "heightfield holds " << hf.z.size() << " heights for " << hf.nx << " x " << hf.ny
         << " = " << count << " samples";
@@ -33,9 +34,9 @@ std::string validateHeightfield(const Heightfield& hf)
     why << "spacing (" << hf.dx << ", " << hf.dy << ") must be finite and non-zero";
     return why.str();
   }
-  if (!std::isfinite(hf.x0) || !std::isfinite(hf.y0))
+  if (!std::isfinite(hf.x0) || !std::isfinite(hf.y0) || !std::isfinite(hf.z0))
   {
-    why << "origin (" << hf.x0 << ", " << hf.y0 << ") must be finite";
+    why << "origin (" << hf.x0 << ", " << hf.y0 << ", " << hf.z0 << ") must be finite";
     return why.str();
   }
   const double extentX = std::abs(hf.dx) * (hf.nx - 1), extentY = std::abs(hf.dy) * (hf.ny - 1);
@@ -45,9 +46,10 @@ std::string validateHeightfield(const Heightfield& hf)
         << " overflows";
     return why.str();
   }
-  for (std::size_t k = 0; k < hf.z.size(); ++k)
+  const float* z = hf.heights();
+  for (std::size_t k = 0; k < count; ++k)
   {
-    const float h = hf.z[k];
+    const float h = z[k];
     if (std::isfinite(h) && std::abs(h) > kMaxHeight)
     {
       why << "height " << h << " at sample (" << k % hf.nx << ", " << k / hf.nx
@@ -60,6 +62,18 @@ std::string validateHeightfield(const Heightfield& hf)
 
 std::size_t infinitiesToNodata(Heightfield& hf)
 {
+  if (hf.external)
+  {
+    const float* begin = hf.external;
+    const float* end = begin + hf.sampleCount();
+    if (std::none_of(begin, end, [](float h) { return std::isinf(h); }))
+    {
+      return 0;
+    }
+    hf.z.assign(begin, end); // never write into storage we do not own
+    hf.external = nullptr;
+    hf.owner.reset();
+  }
   std::size_t replaced = 0;
   for (float& h : hf.z)
   {

@@ -1,12 +1,13 @@
 // Heightfield: a regular grid of heights, the engine's only input data.
 //
-// Sample (i, j) sits at world (x0 + i*dx, y0 + j*dy) with height z[j*nx + i]. Any size
+// Sample (i, j) sits at world (x0 + i*dx, y0 + j*dy, z0 + z[j*nx + i]). Any size
 // nx x ny >= 2 x 2 is accepted (no 2^k+1 rule). Nodata is NaN; +-Inf is treated as nodata
 // too (see infinitiesToNodata). Negative spacing flips an axis; the engine keeps triangles
 // counter-clockwise seen from +z in world coordinates either way.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,10 +20,17 @@ struct Heightfield
   int ny = 0;
   double x0 = 0.0, y0 = 0.0; // world position of sample (0, 0)
   double dx = 1.0, dy = 1.0; // spacing; negative flips the axis
+  double z0 = 0.0;           // height datum: sample (i, j) is at z0 + height(i, j)
   std::vector<float> z;      // nx*ny heights, row-major (i fastest); NaN = nodata
+  // Heights held elsewhere instead of z (e.g. the input image's array, so that a large
+  // DEM is not held twice): when set, z stays empty and `owner` keeps the storage alive.
+  const float* external = nullptr;
+  std::shared_ptr<const void> owner;
 
+  const float* heights() const { return external ? external : z.data(); }
+  std::size_t sampleCount() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * nx + i; }
-  float height(int i, int j) const { return z[index(i, j)]; }
+  float height(int i, int j) const { return heights()[index(i, j)]; }
   double worldX(double i) const { return x0 + i * dx; }
   double worldY(double j) const { return y0 + j * dy; }
   // True when (i, j) -> (x, y) mirrors orientation, so index winding must be flipped.
@@ -37,12 +45,14 @@ constexpr double kMaxHeight = 1e38;
 
 // Checks a heightfield for use by the engine. Returns an empty string when it is usable,
 // otherwise a sentence that says what is wrong (size below 2 x 2, more samples than 2^32 - 1
-// indices, height count that does not match the size, zero or non-finite spacing or origin,
-// an extent that overflows, a finite height beyond +-kMaxHeight). The size checks come
+// indices, height count that does not match the size (owned heights) or no heights at all
+// (external), zero or non-finite spacing, origin or datum, an extent that overflows, a
+// finite height beyond +-kMaxHeight). The size checks come
 // before anything touches the heights, so an absurd size allocates nothing.
 std::string validateHeightfield(const Heightfield& hf);
 
-// Replaces +-Inf by NaN (nodata) in place and returns how many samples were replaced.
+// Replaces +-Inf by NaN (nodata) and returns how many samples were replaced. External
+// heights are never written: when they hold an infinity they are first copied into z.
 std::size_t infinitiesToNodata(Heightfield& hf);
 
 } // namespace gmm

@@ -44,7 +44,7 @@ Box sampleBox(const Heightfield& hf, int i0, int i1, int j0, int j1, bool& hasNo
   hasNodata = false;
   for (int j = j0; j <= j1; ++j)
   {
-    const float* row = hf.z.data() + hf.index(0, j);
+    const float* row = hf.heights() + hf.index(0, j);
     for (int i = i0; i <= i1; ++i)
     {
       const float h = row[i];
@@ -114,6 +114,16 @@ void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
 
 } // namespace
 
+std::string validateBlockSize(int maxBlockQuads)
+{
+  if (maxBlockQuads >= kMinBlockQuads)
+  {
+    return std::string();
+  }
+  return "block size " + std::to_string(maxBlockQuads) + " is below the minimum of " +
+    std::to_string(kMinBlockQuads) + " quads";
+}
+
 std::vector<int> splitBands(int quads, int maxQuads)
 {
   std::vector<int> starts;
@@ -125,7 +135,7 @@ std::vector<int> splitBands(int quads, int maxQuads)
 Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads)
 {
   Quadtree qt;
-  maxBlockQuads = std::max(4, maxBlockQuads);
+  maxBlockQuads = std::max(kMinBlockQuads, maxBlockQuads);
   qt.colStart = splitBands(hf.nx - 1, maxBlockQuads);
   qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads);
   qt.blockCols = static_cast<int>(qt.colStart.size()) - 1;

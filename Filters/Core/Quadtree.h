@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gmm
@@ -56,13 +57,21 @@ struct Quadtree
   }
 };
 
+// The smallest largest-block side, in quads: the one rule every entry point (engine,
+// mapper, filter, command-line tools) applies. Below 4, halving can leave a block one quad
+// wide between two neighbours, which no block shape stitches.
+constexpr int kMinBlockQuads = 4;
+
+// "" when maxBlockQuads is a usable block size (>= kMinBlockQuads), else the reason.
+std::string validateBlockSize(int maxBlockQuads);
+
 // Splits [0, quads] into bands of at most maxQuads quads by recursive halving (rounding
 // down). Returns band start positions plus the end (so size = bands + 1).
 std::vector<int> splitBands(int quads, int maxQuads);
 
-// Builds the quadtree. maxBlockQuads below 4 is raised to 4: smaller bands could leave a
-// one-quad-wide block between two neighbours, which no block shape stitches. The
-// heightfield must be valid.
+// Builds the quadtree. The heightfield must be valid and maxBlockQuads pass
+// validateBlockSize (a smaller value is raised to kMinBlockQuads, so no caller can build
+// an unstitchable tree).
 Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads);
 
 } // namespace gmm

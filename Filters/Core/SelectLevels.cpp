@@ -4,6 +4,7 @@
 #include "Tessellate.h"
 
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -194,11 +195,13 @@ int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>&
   return count;
 }
 
-void projectionFactors(const Quadtree& qt, const View& view, const std::vector<uint8_t>& visible,
-  ErrorMetric metric, std::vector<double>& factor)
+void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& toWorld,
+  const std::vector<uint8_t>& visible, ErrorMetric metric, std::vector<double>& factor)
 {
   factor.assign(qt.blockCount(), 0.0);
-  const double ppu = pixelsPerUnit(view);
+  // World length of a unit stored-height error: height scale times the actor's z column.
+  const double vertical = robustLength(glm::dvec3(toWorld[2]));
+  const double ppu = pixelsPerUnit(view) * vertical;
   const CameraFrame cam = cameraFrameOf(view);
   for (int b = 0; b < qt.blockCount(); ++b)
   {
@@ -214,16 +217,19 @@ void projectionFactors(const Quadtree& qt, const View& view, const std::vector<u
     const Box& box = qt.blockBox[b];
     if (metric == ErrorMetric::CenterDistance)
     {
-      const double d = robustLength(0.5 * (box.lo + box.hi) - view.eye);
+      const glm::dvec3 centre(toWorld * glm::dvec4(0.5 * (box.lo + box.hi), 1.0));
+      const double d = robustLength(centre - view.eye);
       factor[b] = visibleFactor(ppu / std::max(d, view.nearDistance));
       continue;
     }
+    // The world image of the box is the parallelepiped spanned by its transformed corners;
+    // distance is convex and depth linear, so both extremes are at corners.
     double maxDist = 0.0, minDepth = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 8; ++k)
     {
-      const glm::dvec3 corner(
-        (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z);
-      const glm::dvec3 q = corner - view.eye;
+      const glm::dvec4 corner(
+        (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z, 1.0);
+      const glm::dvec3 q = glm::dvec3(toWorld * corner) - view.eye;
       maxDist = std::max(maxDist, robustLength(q));
       minDepth = std::min(minDepth, glm::dot(q, cam.forward));
     }

@@ -14,10 +14,11 @@ namespace gmm
 
 enum class ErrorMetric
 {
-  // Certified: for a vertical error delta inside a block's box, the projected length is at
-  // most f * delta * maxDist / minDepth^2 pixels (f = pixels per unit at depth 1), where
-  // maxDist / minDepth are the largest eye distance and smallest view depth over the box.
-  // This also covers the off-axis magnification that delta * f / distance misses.
+  // Certified: for a displacement of length delta inside a block's (world) box, the
+  // projected length is at most f * delta * maxDist / minDepth^2 pixels (f = pixels per
+  // unit at depth 1), where maxDist / minDepth are the largest eye distance and smallest
+  // view depth over the box. This also covers the off-axis magnification that
+  // delta * f / distance misses.
   Certified,
   // de Boer's approximation: f * delta / (distance from eye to box centre). Cheaper and not
   // a bound; offered for comparison.
@@ -25,12 +26,18 @@ enum class ErrorMetric
 };
 
 // Marks blocks whose box intersects the frustum (1) or not (0), walking the quadtree with
-// early full-inside accept. Returns the number of visible blocks.
+// early full-inside accept. The frustum is in the quadtree's frame (x, y, stored height):
+// transformPlanes(frustumOf(view), heightfieldToWorld(...)). Returns the number of visible
+// blocks.
 int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible);
 
-// Pixels per metre of vertical error for each visible block (0 for culled blocks).
-void projectionFactors(const Quadtree& qt, const View& view, const std::vector<uint8_t>& visible,
-  ErrorMetric metric, std::vector<double>& factor);
+// Pixels per unit of stored-height error for each visible block (0 for culled blocks).
+// `toWorld` maps the quadtree's frame to the view's world (heightfieldToWorld): each box's
+// corners are taken to world coordinates, where the bound is evaluated, and a vertical
+// error of 1 becomes a world displacement of |toWorld * (0, 0, 1, 0)|. Exact for any
+// affine toWorld: a non-uniform scale or shear moves both.
+void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& toWorld,
+  const std::vector<uint8_t>& visible, ErrorMetric metric, std::vector<double>& factor);
 
 // Chooses the coarsest level per visible block whose projected error is <= tau pixels, then
 // refines neighbours until every side strip joined to a coarser edge is within tau too.

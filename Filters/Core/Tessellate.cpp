@@ -34,7 +34,8 @@ public:
     const uint32_t ia = static_cast<uint32_t>(hf_.index(a.i, a.j));
     const uint32_t ib = static_cast<uint32_t>(hf_.index(b.i, b.j));
     const uint32_t ic = static_cast<uint32_t>(hf_.index(c.i, c.j));
-    if (!keepNodata_ && (std::isnan(hf_.z[ia]) || std::isnan(hf_.z[ib]) || std::isnan(hf_.z[ic])))
+    const float* z = hf_.heights();
+    if (!keepNodata_ && (std::isnan(z[ia]) || std::isnan(z[ib]) || std::isnan(z[ic])))
     {
       return;
     }

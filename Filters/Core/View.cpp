@@ -1,6 +1,8 @@
 #include "View.h"
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +87,35 @@ std::string validateView(const View& v)
     why << "viewport " << v.viewportWidth << " x " << v.viewportHeight << " is empty";
     return why.str();
   }
+  const glm::dmat4& m = v.model;
+  for (int c = 0; c < 4; ++c)
+  {
+    if (!finite3(glm::dvec3(m[c])) || !std::isfinite(m[c][3]))
+    {
+      return "model matrix must be finite";
+    }
+  }
+  // Row 3 of an affine matrix is (0, 0, 0, 1); glm indexes [column][row].
+  if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+  {
+    return "model matrix is projective (its last row is not 0 0 0 1); only affine actor "
+           "matrices are supported";
+  }
+  const double det = glm::determinant(glm::dmat3(m));
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det))
+  {
+    return "model matrix is singular";
+  }
+  if (v.hasClipMatrix)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      if (!finite3(glm::dvec3(v.clipFromWorld[c])) || !std::isfinite(v.clipFromWorld[c][3]))
+      {
+        return "clip matrix must be finite";
+      }
+    }
+  }
   return std::string();
 }
 
@@ -97,8 +128,51 @@ CameraFrame cameraFrameOf(const View& v)
   return c;
 }
 
+namespace
+{
+// Gribb & Hartmann: plane k of the clip volume -w <= x, y, z <= w, as a row combination
+// of the matrix (glm::row would copy; index [column][row] directly).
+glm::dvec4 clipPlane(const glm::dmat4& m, int axis, double sign)
+{
+  glm::dvec4 p;
+  for (int c = 0; c < 4; ++c)
+  {
+    p[c] = m[c][3] + sign * m[c][axis];
+  }
+  const double n = robustLength(glm::dvec3(p));
+  return n > 0.0 ? p / n : p;
+}
+} // namespace
+
+Frustum transformPlanes(const Frustum& planes, const glm::dmat4& toPlanesFrame)
+{
+  Frustum out;
+  const glm::dmat4 t = glm::transpose(toPlanesFrame);
+  for (std::size_t k = 0; k < planes.size(); ++k)
+  {
+    glm::dvec4 p = t * planes[k];
+    const double n = robustLength(glm::dvec3(p));
+    out[k] = n > 0.0 ? p / n : p;
+  }
+  return out;
+}
+
+glm::dmat4 heightfieldToWorld(const View& v, double z0, double heightScale)
+{
+  glm::dmat4 vertical(1.0);
+  vertical[2][2] = heightScale;
+  vertical[3][2] = z0;
+  return v.model * vertical;
+}
+
 Frustum frustumOf(const View& v)
 {
+  if (v.hasClipMatrix)
+  {
+    const glm::dmat4& m = v.clipFromWorld;
+    return Frustum{ clipPlane(m, 0, 1.0), clipPlane(m, 0, -1.0), clipPlane(m, 1, 1.0),
+      clipPlane(m, 1, -1.0), clipPlane(m, 2, 1.0), clipPlane(m, 2, -1.0) };
+  }
   const CameraFrame c = cameraFrameOf(v);
   const double aspect = static_cast<double>(v.viewportWidth) / v.viewportHeight;
   Frustum fr;

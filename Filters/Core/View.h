@@ -1,6 +1,7 @@
 // View: what level selection and culling need to know about a camera and viewport.
 #pragma once
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -22,6 +23,16 @@ struct View
   double farDistance = 1e6;
   int viewportWidth = 1280;             // pixels
   int viewportHeight = 720;
+  // Data -> world: the matrix of the actor that draws the heightfield (glm, column-major).
+  // eye, forward, up and the clipping range are in world coordinates. Any invertible
+  // affine matrix (rotation, translation, non-uniform scale, shear): culling and the error
+  // bound are exact under it. Default identity.
+  glm::dmat4 model{ 1.0 };
+  // Optional exact world -> clip matrix of the camera (OpenGL convention, clip w > 0 in
+  // front). When hasClipMatrix is set the frustum planes come from it, so a window centre
+  // or view shear culls exactly; the fields above still give the error bound.
+  bool hasClipMatrix = false;
+  glm::dmat4 clipFromWorld{ 1.0 };
 };
 
 // Frustum as 6 planes (a, b, c, d) with a*x + b*y + c*z + d >= 0 inside; order: left, right,
@@ -37,13 +48,25 @@ glm::dvec3 robustUnit(const glm::dvec3& v);
 
 // Checks a view. Empty string when usable, else what is wrong (non-finite values, zero
 // forward, up zero or parallel to forward, field of view outside (0, 180), parallel scale
-// <= 0, near <= 0 or far <= near, viewport below 1 x 1). The field of view and the parallel
+// <= 0, near <= 0 or far <= near, viewport below 1 x 1, a model matrix that is not affine
+// or not invertible, a non-finite clip matrix). The field of view and the parallel
 // scale are checked in both modes. There is no fallback for a degenerate view-up: the
 // caller knows which "up" it meant. forward and up may have any finite, non-zero length
 // (1e-200 and 1e200 included).
 std::string validateView(const View& view);
 
+// The view's frustum in world coordinates: from clipFromWorld when the view has one, else
+// from eye, forward, up, field of view (or parallel scale) and clipping range.
 Frustum frustumOf(const View& view);
+
+// Frustum planes in another frame: `planes` hold in the frame that `toPlanesFrame` maps
+// into; the result holds in its source frame (p' = M^T p, renormalised). Exact for any
+// invertible affine M.
+Frustum transformPlanes(const Frustum& planes, const glm::dmat4& toPlanesFrame);
+
+// Heightfield coordinates (x, y, stored height h) -> world: model * (x, y, z0 + scale * h).
+// z0 is the heightfield's datum, scale its vertical exaggeration (both exact in double).
+glm::dmat4 heightfieldToWorld(const View& view, double z0, double heightScale);
 
 // Orthonormal camera frame derived from the view (right, true up, unit forward).
 struct CameraFrame

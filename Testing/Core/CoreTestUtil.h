@@ -454,8 +454,23 @@ inline bool awayFromNodata(const gmm::Heightfield& hf, int i, int j)
 
 // Violations are distances above tau * (1 + 1e-6) + 1e-6 px; uncovered counts in-frustum
 // samples away from nodata that no triangle covers.
+// Data -> world for the measure, written out by hand (no glm, no engine): the drawn point
+// (x, y, z0 + scale * h) goes through a 4x4 affine matrix m (row-major, m[r][c]).
+struct MeasureTransform
+{
+  double m[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
+  double z0 = 0.0, heightScale = 1.0;
+  void apply(double x, double y, double h, double out[3]) const
+  {
+    const double z = z0 + heightScale * h;
+    for (int r = 0; r < 3; ++r)
+      out[r] = m[r][0] * x + m[r][1] * y + m[r][2] * z + m[r][3];
+  }
+};
+
 inline ScreenMeasure measureScreenError(const gmm::Heightfield& hf,
-  const std::vector<uint32_t>& indices, const gmm::View* view, double tau)
+  const std::vector<uint32_t>& indices, const gmm::View* view, double tau,
+  const MeasureTransform& toWorld = MeasureTransform())
 {
   ScreenMeasure m;
   const SurfaceSample surf = sampleSurface(hf, indices);
@@ -466,14 +481,16 @@ inline ScreenMeasure measureScreenError(const gmm::Heightfield& hf,
     for (int i = 0; i < hf.nx; ++i)
     {
       const std::size_t k = hf.index(i, j);
-      const double zp = hf.z[k];
+      const double zp = hf.heights()[k];
       if (!std::isfinite(zp))
         continue;
       const bool drawn = !std::isnan(surf.z[k]);
       if (drawn)
-        m.maxVertical = std::max(m.maxVertical, std::fabs(surf.z[k] - zp));
+        m.maxVertical = std::max(m.maxVertical, std::fabs(surf.z[k] - zp) * toWorld.heightScale);
       const double x = hf.worldX(i), y = hf.worldY(j);
-      if (!view || !insideFrustum(cam, x, y, zp))
+      double pw[3], qw[3];
+      toWorld.apply(x, y, zp, pw);
+      if (!view || !insideFrustum(cam, pw[0], pw[1], pw[2]))
         continue;
       ++m.inFrustum;
       if (!drawn)
@@ -483,8 +500,9 @@ inline ScreenMeasure measureScreenError(const gmm::Heightfield& hf,
         continue;
       }
       double px, py, qx, qy;
-      project(cam, x, y, zp, px, py);
-      if (project(cam, x, y, surf.z[k], qx, qy) < cam.nearD)
+      project(cam, pw[0], pw[1], pw[2], px, py);
+      toWorld.apply(x, y, surf.z[k], qw);
+      if (project(cam, qw[0], qw[1], qw[2], qx, qy) < cam.nearD)
       {
         ++m.skippedNear; // surface point behind the near plane: not projectable
         continue;
