@@ -27,30 +27,21 @@ BlockConfig notDrawn()
 
 std::string Engine::setHeightfield(Heightfield hf, int maxBlockQuads, int threads)
 {
-  hf_ = Heightfield();
-  qt_ = Quadtree();
-  table_ = ErrorTable();
+  std::shared_ptr<const Terrain> t;
+  lastError_ = buildTerrain(std::move(hf), maxBlockQuads, threads, t);
+  setTerrain(std::move(t));
+  return lastError_;
+}
+
+void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
+{
+  terrain_ = terrain ? std::move(terrain) : std::make_shared<const Terrain>();
+  const int blocks = terrain_->qt.blockCount();
   indices_.clear();
   levels_.clear();
-  drawnConfig_.clear();
-  blockTriangles_.clear();
   stats_ = FrameStats();
-  lastError_ = validateHeightfield(hf);
-  if (lastError_.empty())
-  {
-    lastError_ = validateBlockSize(maxBlockQuads);
-  }
-  if (!lastError_.empty())
-  {
-    return lastError_;
-  }
-  infinitiesToNodata(hf);
-  hf_ = std::move(hf);
-  qt_ = buildQuadtree(hf_, maxBlockQuads);
-  table_ = buildErrorTable(hf_, qt_, threads);
-  drawnConfig_.assign(qt_.blockCount(), notDrawn());
-  blockTriangles_.assign(qt_.blockCount(), {});
-  return lastError_;
+  drawnConfig_.assign(blocks, notDrawn());
+  blockTriangles_.assign(blocks, {});
 }
 
 const FrameStats& Engine::update(const View& view, double tau)
@@ -64,13 +55,14 @@ const FrameStats& Engine::update(const View& view, double tau)
   }
   if (!lastError_.empty())
   {
-    levels_.assign(qt_.blockCount(), -1);
+    levels_.assign(terrain_->qt.blockCount(), -1);
     return finishFrame(nullptr);
   }
-  const glm::dmat4 toWorld = heightfieldToWorld(view, hf_.z0, heightScale_);
-  cullBlocks(qt_, transformPlanes(frustumOf(view), toWorld), visible_);
-  projectionFactors(qt_, view, toWorld, visible_, metric_, factor_);
-  selectLevels(qt_, table_, factor_, tau, levels_);
+  const Terrain& t = *terrain_;
+  const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
+  cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_);
+  projectionFactors(t.qt, view, toWorld, visible_, metric_, factor_);
+  selectLevels(t.qt, t.table, factor_, tau, levels_);
   return finishFrame(&factor_);
 }
 
@@ -97,18 +89,18 @@ const FrameStats& Engine::updateForError(double maxError)
   }
   if (!lastError_.empty())
   {
-    levels_.assign(qt_.blockCount(), -1);
+    levels_.assign(terrain_->qt.blockCount(), -1);
     return finishFrame(nullptr);
   }
   // The table holds stored-height errors; the bound is in the scaled surface's units.
-  selectLevelsForError(qt_, table_, maxError / heightScale_, levels_);
+  selectLevelsForError(terrain_->qt, terrain_->table, maxError / heightScale_, levels_);
   return finishFrame(nullptr);
 }
 
 const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
 {
   lastError_.clear();
-  levels_.assign(qt_.blockCount(), -1);
+  levels_.assign(terrain_->qt.blockCount(), -1);
   if (levels.size() != levels_.size())
   {
     std::ostringstream why;
@@ -116,17 +108,18 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
     lastError_ = why.str();
     return finishFrame(nullptr);
   }
-  for (int b = 0; b < qt_.blockCount(); ++b)
+  const Quadtree& qt = terrain_->qt;
+  for (int b = 0; b < qt.blockCount(); ++b)
   {
     const int m = levels[b];
-    const int w = qt_.blockWidth(b), h = qt_.blockHeight(b);
+    const int w = qt.blockWidth(b), h = qt.blockHeight(b);
     if (m < -1 || (m >= 0 && (m > topLevel(w, h) || blockShape(w, h, m) == BlockShape::Invalid)))
     {
       std::ostringstream why;
       why << "level " << m << " is not valid for block " << b << " (" << w << " x " << h
           << " quads; -1 = not drawn, 0.." << topLevel(w, h) << " where the shape allows)";
       lastError_ = why.str();
-      levels_.assign(qt_.blockCount(), -1);
+      levels_.assign(terrain_->qt.blockCount(), -1);
       return finishFrame(nullptr);
     }
   }
@@ -136,15 +129,16 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
 
 const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
 {
+  const Terrain& t = *terrain_;
   FrameStats s;
   bool changed = false;
-  for (int b = 0; b < qt_.blockCount(); ++b)
+  for (int b = 0; b < t.qt.blockCount(); ++b)
   {
-    const BlockConfig cfg = levels_[b] >= 0 ? blockConfigOf(qt_, levels_, b) : notDrawn();
+    const BlockConfig cfg = levels_[b] >= 0 ? blockConfigOf(t.qt, levels_, b) : notDrawn();
     if (levels_[b] >= 0)
     {
       ++s.visibleBlocks;
-      const double e = blockCertifiedError(qt_, table_, levels_, b); // stored-height units
+      const double e = blockCertifiedError(t.qt, t.table, levels_, b); // stored-height units
       s.maxGeometricError = std::max(s.maxGeometricError, e * heightScale_);
       if (factor && e > 0.0) // e == 0 with an infinite factor would give NaN
       {
@@ -165,7 +159,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
     tris.clear();
     if (cfg.level >= 0)
     {
-      emitBlock(hf_, qt_, b, cfg, BlockPart::Whole, tris);
+      emitBlock(t.hf, t.qt, b, cfg, BlockPart::Whole, tris);
       ++s.blocksRetessellated;
     }
   }

@@ -2,6 +2,7 @@
 //
 //   Engine e;
 //   std::string err = e.setHeightfield(hf, 64);   // quadtree + error table (input change only)
+//   e.setTerrain(sharedTerrain);                   // or: a Terrain another consumer built
 //   const FrameStats& s = e.update(view, 1.0);     // cull, select, tessellate (every frame)
 //   draw(e.indices());                             // only if !s.reused
 #pragma once
@@ -11,9 +12,11 @@
 #include "Quadtree.h"
 #include "SelectLevels.h"
 #include "Tessellate.h"
+#include "Terrain.h"
 #include "View.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,13 +37,13 @@ struct FrameStats
 class Engine
 {
 public:
-  // Validates `hf` (validateHeightfield) and the block size (validateBlockSize), builds
-  // the quadtree (leaves at most maxBlockQuads quads a side) and the error table. Returns ""
-  // on success or the reason it failed (the engine is then empty). +-Inf heights become
-  // nodata (NaN); external heights are shared as they are, or copied first when they hold
-  // an infinity (infinitiesToNodata). A DEM that is all nodata is accepted and draws
-  // nothing (zero triangles, no error): a void tile is valid data, not a mistake.
+  // Builds a terrain for `hf` (buildTerrain) and uses it; "" on success, else the reason
+  // (the engine is then empty).
   std::string setHeightfield(Heightfield hf, int maxBlockQuads = 64, int threads = 0);
+
+  // Uses a terrain built elsewhere (shared with other engines; never modified). nullptr
+  // empties the engine. Per-frame state starts afresh.
+  void setTerrain(std::shared_ptr<const Terrain> terrain);
 
   // One frame for a camera. Returns the frame's statistics; on a bad view (validateView) or
   // tau, sets lastError() and returns stats with zero triangles. tau is in pixels, finite and
@@ -72,17 +75,17 @@ public:
   const std::vector<int8_t>& levels() const { return levels_; }
   const FrameStats& stats() const { return stats_; }
   const std::string& lastError() const { return lastError_; }
-  const Heightfield& heightfield() const { return hf_; }
-  const Quadtree& quadtree() const { return qt_; }
-  const ErrorTable& errorTable() const { return table_; }
-  bool empty() const { return qt_.blockCount() == 0; }
+  const Heightfield& heightfield() const { return terrain_->hf; }
+  const Quadtree& quadtree() const { return terrain_->qt; }
+  const ErrorTable& errorTable() const { return terrain_->table; }
+  const std::shared_ptr<const Terrain>& terrain() const { return terrain_; }
+  bool empty() const { return terrain_->qt.blockCount() == 0; }
 
 private:
   const FrameStats& finishFrame(const std::vector<double>* factor);
 
-  Heightfield hf_;
-  Quadtree qt_;
-  ErrorTable table_;
+  // Never null: an empty Terrain when there is no heightfield.
+  std::shared_ptr<const Terrain> terrain_ = std::make_shared<const Terrain>();
   ErrorMetric metric_ = ErrorMetric::Certified;
   double heightScale_ = 1.0;
 

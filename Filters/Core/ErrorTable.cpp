@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <atomic>
+#include <chrono>
 #include <thread>
 
 namespace gmm
@@ -208,7 +210,8 @@ float trianglesError(const Heightfield& hf, const std::vector<uint32_t>& tris, b
   return worst;
 }
 
-ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads)
+ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads,
+  const std::function<void(double)>& progress)
 {
   ErrorTable t;
   int maxTop = 0;
@@ -227,19 +230,31 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(blocks)));
   // Blocks are independent: interleave them over the workers so that expensive regions of
   // the DEM spread evenly.
+  std::atomic<std::size_t> done{ 0 };
   auto work = [&](unsigned first) {
     std::vector<uint32_t> scratch;
     for (std::size_t b = first; b < blocks; b += workers)
     {
       fillBlock(hf, qt, static_cast<int>(b), t, scratch);
+      done.fetch_add(1, std::memory_order_relaxed);
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned w = 1; w < workers; ++w)
+  for (unsigned w = 0; w < workers; ++w)
   {
     pool.emplace_back(work, w);
   }
-  work(0);
+  if (progress)
+  {
+    // The caller's thread reports (VTK progress events must come from it) while it waits.
+    // Short waits first, so that a small table is not held up by the polling.
+    for (int wait = 1; done.load(std::memory_order_relaxed) < blocks; wait = std::min(2 * wait, 50))
+    {
+      progress(static_cast<double>(done.load(std::memory_order_relaxed)) / blocks);
+      std::this_thread::sleep_for(std::chrono::milliseconds(wait));
+    }
+    progress(1.0);
+  }
   for (std::thread& th : pool)
   {
     th.join();

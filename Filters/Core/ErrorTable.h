@@ -14,6 +14,7 @@
 #include "Quadtree.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace gmm
@@ -43,7 +44,10 @@ struct ErrorTable
 };
 
 // Builds the table with up to `threads` worker threads (0 = hardware concurrency).
-ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads = 0);
+// `progress`, when given, is called with the fraction of blocks done, from the calling
+// thread only (the workers count, the caller reports).
+ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads = 0,
+  const std::function<void(double)>& progress = nullptr);
 
 // Maximum vertical error of the samples covered by a list of triangles (grid indices),
 // the building block of the table; exposed for tests.

@@ -1,0 +1,41 @@
+// Terrain: everything the engine derives from a heightfield once, before any frame: the
+// heightfield itself, its quadtree and its exact error table. It does not change per frame,
+// so one Terrain is shared (read-only) by every consumer of the same DEM: several engines,
+// the mapper and the filter, the picker.
+//
+//   std::shared_ptr<const Terrain> t;
+//   std::string err = buildTerrain(hf, 64, 0, t);   // "" on success
+//   Engine a, b;  a.setTerrain(t);  b.setTerrain(t); // no second table build
+#pragma once
+
+#include "ErrorTable.h"
+#include "Heightfield.h"
+#include "Quadtree.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace gmm
+{
+
+struct Terrain
+{
+  Heightfield hf;
+  Quadtree qt;
+  ErrorTable table;
+  int maxBlockQuads = 0; // the block size it was built with
+};
+
+// Progress of a long build: fraction in [0, 1]. Called from the building thread only.
+using ProgressFn = std::function<void(double)>;
+
+// Validates `hf` (validateHeightfield) and the block size (validateBlockSize), turns +-Inf
+// into nodata (infinitiesToNodata: external heights are shared as they are, or copied first
+// when they hold an infinity), builds the quadtree and the error table with up to `threads`
+// workers (0 = hardware concurrency). Returns "" and sets `out`, or the reason (out reset).
+// A DEM that is all nodata is accepted and draws nothing: a void tile is valid data.
+std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
+  std::shared_ptr<const Terrain>& out, const ProgressFn& progress = nullptr);
+
+} // namespace gmm
