@@ -9,7 +9,13 @@
 #include "vtkObject.h"
 #include "vtkPointData.h"
 
+#include "Quadtree.h"
+
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <string>
+#include <unistd.h>
 #include <limits>
 
 namespace
@@ -28,15 +34,6 @@ void CopyHeights(const T* src, int comps, std::size_t n, float* dst)
   }
 }
 
-// World position of a data-space point through a 4x4 matrix.
-void Transform(const double m[16], const double p[3], double out[3])
-{
-  double w = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
-  for (int r = 0; r < 3; ++r)
-  {
-    out[r] = (m[r * 4] * p[0] + m[r * 4 + 1] * p[1] + m[r * 4 + 2] * p[2] + m[r * 4 + 3]) / w;
-  }
-}
 }
 
 namespace vtkGeoMipMapConversion
@@ -69,7 +66,7 @@ std::string ImageToHeightfield(vtkImageData* image, gmm::Heightfield& hf, vtkDat
   vtkMatrix3x3::DeepCopy(dir, image->GetDirectionMatrix());
   double sx = dir[0], sy = dir[4];
   if (dir[1] != 0 || dir[2] != 0 || dir[3] != 0 || dir[5] != 0 || dir[6] != 0 || dir[7] != 0 ||
-    std::abs(sx) != 1 || std::abs(sy) != 1)
+    std::abs(sx) != 1 || std::abs(sy) != 1 || dir[8] == 0)
   {
     return "only axis-aligned image directions are supported";
   }
@@ -82,8 +79,31 @@ std::string ImageToHeightfield(vtkImageData* image, gmm::Heightfield& hf, vtkDat
   hf.dy = sy * spacing[1];
   hf.x0 = origin[0] + ext[0] * hf.dx;
   hf.y0 = origin[1] + ext[2] * hf.dy;
-  hf.z.resize(n);
+  // The z origin is the datum, as vtkWarpScalar over the image would place the surface;
+  // kept in double apart from the float heights, so an ECEF-size origin costs no precision.
+  hf.z0 = origin[2] + ext[4] * dir[8] * spacing[2];
   const int comps = a->GetNumberOfComponents();
+  hf.z.clear();
+  hf.external = nullptr;
+  hf.owner.reset();
+  if (a->GetDataType() == VTK_FLOAT && comps == 1)
+  {
+    // Share the array when no value needs sanitising (NaN and finite heights within the
+    // engine's range pass as they are; +-Inf the engine handles by copying).
+    const float* z = static_cast<const float*>(a->GetVoidPointer(0));
+    const bool clean = std::all_of(z, z + n,
+      [](float v) { return !(std::abs(v) > gmm::kMaxHeight) || std::isinf(v); });
+    if (clean)
+    {
+      hf.external = z;
+      a->Register(nullptr); // the terrain keeps the array alive, not the image
+      hf.owner = std::shared_ptr<const void>(a, [](const void* p) {
+        static_cast<vtkDataArray*>(const_cast<void*>(p))->UnRegister(nullptr);
+      });
+      return gmm::validateHeightfield(hf);
+    }
+  }
+  hf.z.resize(n);
   switch (a->GetDataType())
   {
     vtkTemplateMacro(
@@ -95,8 +115,8 @@ std::string ImageToHeightfield(vtkImageData* image, gmm::Heightfield& hf, vtkDat
 }
 
 //------------------------------------------------------------------------------
-std::string CameraToView(
-  vtkCamera* camera, vtkMatrix4x4* dataToWorld, int width, int height, gmm::View& view)
+std::string CameraToView(vtkCamera* camera, vtkMatrix4x4* dataToWorld, int width, int height,
+  gmm::View& view)
 {
   if (!camera)
   {
@@ -106,46 +126,26 @@ std::string CameraToView(
   {
     return "empty viewport";
   }
-  double inv[16];
-  double scale = 1.0;
+  // Everything in world coordinates; the actor's matrix goes to the engine whole, which
+  // culls and bounds the error exactly under it (no reduction to one scale factor).
+  view.model = glm::dmat4(1.0);
   if (dataToWorld)
   {
-    vtkMatrix4x4::Invert(dataToWorld->GetData(), inv);
-    double m3[3][3];
-    for (int r = 0; r < 3; ++r)
+    for (int r = 0; r < 4; ++r)
     {
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < 4; ++c)
       {
-        m3[r][c] = dataToWorld->GetElement(r, c);
+        view.model[c][r] = dataToWorld->GetElement(r, c); // glm is column-major
       }
     }
-    const double det = vtkMath::Determinant3x3(m3);
-    if (!std::isfinite(det) || det == 0.0)
-    {
-      return "singular actor matrix";
-    }
-    // Distances in data units are world distances / scale (exact for uniform scale).
-    scale = std::cbrt(std::abs(det));
   }
-  else
-  {
-    vtkMatrix4x4::Identity(inv);
-  }
-  double pos[3], fp[3], upEnd[3], eye[3], focal[3], upPt[3];
+  double pos[3], fp[3];
   camera->GetPosition(pos);
   camera->GetFocalPoint(fp);
   const double* vu = camera->GetViewUp();
-  for (int k = 0; k < 3; ++k)
-  {
-    upEnd[k] = pos[k] + vu[k];
-  }
-  // Points, not directions, go through the inverse so translations are handled too.
-  Transform(inv, pos, eye);
-  Transform(inv, fp, focal);
-  Transform(inv, upEnd, upPt);
-  view.eye = glm::dvec3(eye[0], eye[1], eye[2]);
-  view.forward = glm::dvec3(focal[0] - eye[0], focal[1] - eye[1], focal[2] - eye[2]);
-  view.up = glm::dvec3(upPt[0] - eye[0], upPt[1] - eye[1], upPt[2] - eye[2]);
+  view.eye = glm::dvec3(pos[0], pos[1], pos[2]);
+  view.forward = glm::dvec3(fp[0] - pos[0], fp[1] - pos[1], fp[2] - pos[2]);
+  view.up = glm::dvec3(vu[0], vu[1], vu[2]);
   double angle = camera->GetViewAngle();
   if (camera->GetUseHorizontalViewAngle())
   {
@@ -155,12 +155,24 @@ std::string CameraToView(
   }
   view.fovYDegrees = angle;
   view.parallel = camera->GetParallelProjection() != 0;
-  view.parallelScale = camera->GetParallelScale() / scale;
+  view.parallelScale = camera->GetParallelScale();
   const double* range = camera->GetClippingRange();
-  view.nearDistance = range[0] / scale;
-  view.farDistance = range[1] / scale;
+  view.nearDistance = range[0];
+  view.farDistance = range[1];
   view.viewportWidth = width;
   view.viewportHeight = height;
+  // The camera's own world -> clip matrix: culling then follows a window centre, a view
+  // shear or any other projection setting exactly.
+  vtkMatrix4x4* clip =
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1, 1);
+  view.hasClipMatrix = true;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view.clipFromWorld[c][r] = clip->GetElement(r, c);
+    }
+  }
   return gmm::validateView(view);
 }
 
@@ -181,7 +193,65 @@ bool AcceptPixelError(vtkObject* self, double tau, double& current)
 }
 
 //------------------------------------------------------------------------------
-void SampleNormal(const gmm::Heightfield& hf, int i, int j, float n[3])
+double AvailableMemoryBytes()
+{
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+  {
+    if (key == "MemAvailable:")
+    {
+      return kib * 1024.0;
+    }
+  }
+#if defined(_SC_AVPHYS_PAGES) && defined(_SC_PAGESIZE)
+  const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  if (pages > 0 && size > 0)
+  {
+    return static_cast<double>(pages) * size;
+  }
+#endif
+  return 0.0;
+}
+
+//------------------------------------------------------------------------------
+bool AcceptBlockSize(vtkObject* self, int quads, int& current)
+{
+  const std::string err = gmm::validateBlockSize(quads);
+  if (!err.empty())
+  {
+    vtkErrorWithObjectMacro(self, "BlockSize: " << err << "; keeping " << current);
+    return false;
+  }
+  if (quads == current)
+  {
+    return false;
+  }
+  current = quads;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool AcceptHeightScale(vtkObject* self, double scale, double& current)
+{
+  if (!(scale > 0.0 && std::isfinite(scale)))
+  {
+    vtkErrorWithObjectMacro(
+      self, "HeightScale must be a finite number > 0, got " << scale << "; keeping " << current);
+    return false;
+  }
+  if (scale == current)
+  {
+    return false;
+  }
+  current = scale;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void SampleNormal(const gmm::Heightfield& hf, int i, int j, double heightScale, float n[3])
 {
   // Slope along one axis from the valid neighbours of (i, j): central when both exist.
   auto slope = [&hf](int i0, int j0, int di, int dj, double step, int count) {
@@ -204,8 +274,8 @@ void SampleNormal(const gmm::Heightfield& hf, int i, int j, float n[3])
     }
     return 0.0;
   };
-  const double gx = slope(i, j, 1, 0, hf.dx, hf.nx);
-  const double gy = slope(i, j, 0, 1, hf.dy, hf.ny);
+  const double gx = heightScale * slope(i, j, 1, 0, hf.dx, hf.nx);
+  const double gy = heightScale * slope(i, j, 0, 1, hf.dy, hf.ny);
   // Upward normal of z = h(x, y); the sign of dx, dy is already inside gx, gy.
   const double len = std::sqrt(gx * gx + gy * gy + 1.0);
   n[0] = static_cast<float>(-gx / len);

@@ -29,22 +29,24 @@ namespace vtkGeoMipMapConversion
 /**
  * Heights of a 2D image (dimensions nx x ny x 1) as a heightfield. Heights come from
  * `heights` when given, else from the active point scalars (component 0, any numeric
- * type); NaN/Inf are nodata. Sample (i, j) sits at origin + (extent min + (i, j)) * spacing;
- * a direction matrix must be diagonal with entries +-1 (a flip becomes a negative
- * spacing). The image's z origin is ignored: heights are absolute.
+ * type); NaN/Inf are nodata. Sample (i, j) sits at origin + (extent min + (i, j)) * spacing,
+ * at height origin z + h (the datum hf.z0, kept in double, as vtkWarpScalar places the
+ * surface); a direction matrix must be diagonal with entries +-1 (a flip becomes a
+ * negative spacing). A one-component float array is shared, not copied (hf.external, the
+ * array held by hf.owner) unless it holds heights beyond gmm::kMaxHeight.
  * Returns "" on success, else why the image cannot be used.
  */
 GEOMIPMAPFILTERS_EXPORT std::string ImageToHeightfield(
   vtkImageData* image, gmm::Heightfield& hf, vtkDataArray* heights = nullptr);
 
 /**
- * A camera and a viewport of width x height pixels as a gmm::View in the data's own
- * coordinates. `dataToWorld` is the actor's matrix (nullptr = identity): eye, focal
- * point and view-up go through its inverse, and the clipping range and parallel scale are
- * divided by its scale. Exact for rotations, translations and uniform scale; for a
- * non-uniform scale the geometric-mean scale is used, so error bounds are approximate
- * (a vertical exaggeration k magnifies screen errors by up to k).
- * Returns "" on success, else why (no camera, singular matrix, empty viewport).
+ * A camera and a viewport of width x height pixels as a gmm::View: the camera in world
+ * coordinates with its exact world -> clip matrix (window centre and view shear included
+ * in culling), and `dataToWorld`, the actor's matrix (nullptr = identity), as the view's
+ * model matrix. The engine culls and bounds the error exactly under any invertible affine
+ * actor matrix (non-uniform scale and shear included); a projective or singular one is
+ * refused. The error bound assumes no view shear.
+ * Returns "" on success, else why (no camera, bad matrix, empty viewport).
  */
 GEOMIPMAPFILTERS_EXPORT std::string CameraToView(vtkCamera* camera, vtkMatrix4x4* dataToWorld,
   int width, int height, gmm::View& view);
@@ -57,10 +59,32 @@ GEOMIPMAPFILTERS_EXPORT std::string CameraToView(vtkCamera* camera, vtkMatrix4x4
 GEOMIPMAPFILTERS_EXPORT bool AcceptPixelError(vtkObject* self, double tau, double& current);
 
 /**
- * Unit normal at sample (i, j) from full-resolution central differences (one-sided next
- * to the border or to nodata; (0, 0, 1) when no neighbour is valid).
+ * Memory, in bytes, this machine can give a new allocation now (Linux: MemAvailable of
+ * /proc/meminfo; elsewhere the free physical pages), 0 when unknown. Used to refuse a DEM
+ * that cannot fit before allocating it.
  */
-GEOMIPMAPFILTERS_EXPORT void SampleNormal(const gmm::Heightfield& hf, int i, int j, float n[3]);
+GEOMIPMAPFILTERS_EXPORT double AvailableMemoryBytes();
+
+/**
+ * The SetBlockSize rule of the mapper and the filter: a size >= gmm::kMinBlockQuads (4) is
+ * stored in `current` and true returned when it differs; a smaller one is refused with an
+ * error reported by `self` naming the minimum, and `current` is kept.
+ */
+GEOMIPMAPFILTERS_EXPORT bool AcceptBlockSize(vtkObject* self, int quads, int& current);
+
+/**
+ * The SetHeightScale rule of the mapper and the filter: a finite scale > 0 is stored in
+ * `current` and true returned when it differs; anything else is refused with an error.
+ */
+GEOMIPMAPFILTERS_EXPORT bool AcceptHeightScale(vtkObject* self, double scale, double& current);
+
+/**
+ * Unit normal at sample (i, j) of the surface z0 + heightScale * h from full-resolution
+ * central differences (one-sided next to the border or to nodata; (0, 0, 1) when no
+ * neighbour is valid). The mapper's fragment shader computes the same normals.
+ */
+GEOMIPMAPFILTERS_EXPORT void SampleNormal(
+  const gmm::Heightfield& hf, int i, int j, double heightScale, float n[3]);
 }
 
 #endif

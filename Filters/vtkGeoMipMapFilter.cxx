@@ -1,6 +1,7 @@
 #include "vtkGeoMipMapFilter.h"
 
 #include "vtkGeoMipMapConversion.h"
+#include "vtkGeoMipMapTerrain.h"
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -11,10 +12,12 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkTypeInt64Array.h"
 
 #include "Engine.h"
@@ -26,14 +29,13 @@
 struct vtkGeoMipMapFilter::Internals
 {
   gmm::Engine Engine;
-  // The engine (quadtree, error table) is kept while the input and block size stay.
-  vtkMTimeType InputTime = 0;
-  int BlockSize = 0;
-  bool Valid = false;
+  // The terrain the engine uses (shared with every other consumer of the input image).
+  vtkSmartPointer<vtkGeoMipMapTerrain> Terrain;
 };
 
 vtkStandardNewMacro(vtkGeoMipMapFilter);
 vtkCxxSetObjectMacro(vtkGeoMipMapFilter, Camera, vtkCamera);
+vtkCxxSetObjectMacro(vtkGeoMipMapFilter, ModelMatrix, vtkMatrix4x4);
 
 //------------------------------------------------------------------------------
 vtkGeoMipMapFilter::vtkGeoMipMapFilter()
@@ -45,6 +47,7 @@ vtkGeoMipMapFilter::vtkGeoMipMapFilter()
 vtkGeoMipMapFilter::~vtkGeoMipMapFilter()
 {
   this->SetCamera(nullptr);
+  this->SetModelMatrix(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -63,6 +66,10 @@ vtkMTimeType vtkGeoMipMapFilter::GetMTime()
   {
     t = this->Camera->GetMTime();
   }
+  if (this->ModelMatrix && this->ModelMatrix->GetMTime() > t)
+  {
+    t = this->ModelMatrix->GetMTime();
+  }
   return t;
 }
 
@@ -77,23 +84,21 @@ int vtkGeoMipMapFilter::RequestData(
     return 0;
   }
   Internals& in = *this->Internal;
-  if (!in.Valid || in.InputTime != image->GetMTime() || in.BlockSize != this->BlockSize)
+  std::string err;
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err);
+  if (!terrain)
   {
-    gmm::Heightfield hf;
-    std::string err = vtkGeoMipMapConversion::ImageToHeightfield(image, hf);
-    if (err.empty())
-    {
-      err = in.Engine.setHeightfield(hf, this->BlockSize);
-    }
-    in.Valid = err.empty();
-    in.InputTime = image->GetMTime();
-    in.BlockSize = this->BlockSize;
-    if (!err.empty())
-    {
-      vtkErrorMacro("Cannot use the input image: " << err);
-      return 0;
-    }
+    in.Terrain = nullptr;
+    in.Engine.setTerrain(nullptr);
+    vtkErrorMacro("Cannot use the input image: " << err);
+    return 0;
   }
+  if (terrain != in.Terrain)
+  {
+    in.Terrain = terrain;
+    in.Engine.setTerrain(terrain->GetTerrain());
+  }
+  in.Engine.setHeightScale(this->HeightScale);
 
   const gmm::FrameStats* stats = nullptr;
   if (this->MaximumGeometricError > 0.0 || !this->Camera)
@@ -103,8 +108,8 @@ int vtkGeoMipMapFilter::RequestData(
   else
   {
     gmm::View view;
-    const std::string err = vtkGeoMipMapConversion::CameraToView(
-      this->Camera, nullptr, this->ViewportSize[0], this->ViewportSize[1], view);
+    err = vtkGeoMipMapConversion::CameraToView(
+      this->Camera, this->ModelMatrix, this->ViewportSize[0], this->ViewportSize[1], view);
     if (!err.empty())
     {
       vtkErrorMacro("Cannot use the camera: " << err);
@@ -121,7 +126,7 @@ int vtkGeoMipMapFilter::RequestData(
   // Compact: only the samples the triangles use, numbered in first-use order.
   const gmm::Heightfield& hf = in.Engine.heightfield();
   const std::vector<uint32_t>& tris = in.Engine.indices();
-  std::vector<vtkIdType> newId(hf.z.size(), -1);
+  std::vector<vtkIdType> newId(hf.sampleCount(), -1);
   std::vector<uint32_t> used;
   vtkNew<vtkTypeInt64Array> conn;
   conn->SetNumberOfTuples(static_cast<vtkIdType>(tris.size()));
@@ -160,10 +165,11 @@ int vtkGeoMipMapFilter::RequestData(
   {
     const int i = static_cast<int>(used[p] % static_cast<uint32_t>(hf.nx));
     const int j = static_cast<int>(used[p] / static_cast<uint32_t>(hf.nx));
-    const float z = hf.z[used[p]];
-    xyz->SetTypedTuple(p, std::array<double, 3>{ hf.worldX(i), hf.worldY(j), z }.data());
+    const float z = hf.heights()[used[p]];
+    xyz->SetTypedTuple(p,
+      std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + this->HeightScale * z }.data());
     elevation->SetValue(p, z);
-    vtkGeoMipMapConversion::SampleNormal(hf, i, j, normals->GetPointer(3 * p));
+    vtkGeoMipMapConversion::SampleNormal(hf, i, j, this->HeightScale, normals->GetPointer(3 * p));
   }
   vtkNew<vtkPoints> points;
   points->SetData(xyz);
@@ -196,6 +202,24 @@ int vtkGeoMipMapFilter::RequestData(
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapFilter::SetBlockSize(int quads)
+{
+  if (vtkGeoMipMapConversion::AcceptBlockSize(this, quads, this->BlockSize))
+  {
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapFilter::SetHeightScale(double scale)
+{
+  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->HeightScale))
+  {
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetPixelError(double tau)
 {
   if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
@@ -214,4 +238,6 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "MaximumGeometricError: " << this->MaximumGeometricError << "\n";
+  os << indent << "HeightScale: " << this->HeightScale << "\n";
+  os << indent << "ModelMatrix: " << this->ModelMatrix << "\n";
 }

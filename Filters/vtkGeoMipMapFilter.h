@@ -5,10 +5,12 @@
  * Input: a 2D vtkImageData with heights as active point scalars (NaN = nodata), as for
  * vtkGeoMipMapMapper. Output: the GeoMipMapping triangulation for one camera and viewport
  * (or for a geometric error), with only the samples the triangles use (compacted, at
- * their full-resolution positions), point scalars "Elevation", point normals "Normals"
- * (full-resolution central differences, like the mapper's), and field data with the
- * frame's statistics: Triangles, VisibleBlocks, CulledBlocks, MaximumScreenSpaceError,
- * MaximumGeometricError.
+ * their full-resolution positions (x, y, origin z + HeightScale * h)), point scalars
+ * "Elevation" (h), point normals "Normals" (full-resolution central differences of the
+ * scaled surface, the normals the mapper shades with), and field data with the frame's
+ * statistics: Triangles, VisibleBlocks, CulledBlocks, MaximumScreenSpaceError,
+ * MaximumGeometricError (data units). The quadtree and error tables are those of
+ * vtkGeoMipMapTerrain: built once per input image and shared with every mapper of it.
  *
  * Modes:
  * - view-dependent (a Camera is set and MaximumGeometricError <= 0): the same
@@ -19,7 +21,9 @@
  *   lossless triangulation: flat regions coarsen, everything else stays at full
  *   resolution.
  *
- * The camera is taken in the data's coordinates (no actor transform).
+ * The camera is in world coordinates; ModelMatrix is the data -> world matrix of the
+ * actor that would draw the terrain (none = identity), so that the filter gives the
+ * triangles vtkGeoMipMapMapper draws for that actor.
  *
  * @sa vtkGeoMipMapMapper
  */
@@ -32,6 +36,7 @@
 #include <memory> // For std::unique_ptr
 
 class vtkCamera;
+class vtkMatrix4x4;
 
 class GEOMIPMAPFILTERS_EXPORT vtkGeoMipMapFilter : public vtkPolyDataAlgorithm
 {
@@ -69,15 +74,36 @@ public:
 
   ///@{
   /**
-   * Largest block side in quads (>= 2). Default 64, as the mapper's.
+   * Data -> world matrix of the actor (vtkProp3D::GetMatrix()) in view-dependent mode;
+   * null (default) is the identity. Any invertible affine matrix.
    */
-  vtkSetClampMacro(BlockSize, int, 2, VTK_INT_MAX);
+  void SetModelMatrix(vtkMatrix4x4* matrix);
+  vtkGetObjectMacro(ModelMatrix, vtkMatrix4x4);
+  ///@}
+
+  ///@{
+  /**
+   * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default 64, as the
+   * mapper's. A smaller value is refused with an error and the previous one kept.
+   */
+  void SetBlockSize(int quads);
   vtkGetMacro(BlockSize, int);
   ///@}
 
   ///@{
   /**
-   * When > 0, view-independent mode with this error bound in metres. Default 0.
+   * Vertical exaggeration: the surface is at origin z + HeightScale * h. Finite and > 0,
+   * else refused with an error (previous value kept). Default 1. Changing it does not
+   * rebuild the error tables.
+   */
+  void SetHeightScale(double scale);
+  vtkGetMacro(HeightScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * When > 0, view-independent mode with this error bound in data units (metres of the
+   * scaled surface). Default 0.
    */
   vtkSetClampMacro(MaximumGeometricError, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MaximumGeometricError, double);
@@ -93,6 +119,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkCamera* Camera = nullptr;
+  vtkMatrix4x4* ModelMatrix = nullptr;
+  double HeightScale = 1.0;
   int ViewportSize[2] = { 1280, 720 };
   double PixelError = 1.0;
   int BlockSize = 64;

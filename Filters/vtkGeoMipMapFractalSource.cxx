@@ -82,9 +82,13 @@ int vtkGeoMipMapFractalSource::RequestData(
     return 0;
   }
   this->UpdateProgress(0.0);
-  gmm::Heightfield hf = gmm::makeSyntheticTerrain(
-    this->Dimensions[0], this->Dimensions[1], this->Spacing, this->Seed, this->Amplitude);
-  if (hf.z.empty())
+  // Generated straight into the output array: a large DEM is never held twice.
+  const int nx = this->Dimensions[0], ny = this->Dimensions[1];
+  vtkNew<vtkFloatArray> heights;
+  heights->SetName("Elevation");
+  heights->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  if (!gmm::fillSyntheticTerrain(
+        heights->GetPointer(0), nx, ny, this->Spacing, this->Seed, this->Amplitude))
   {
     vtkErrorMacro(<< "Terrain generation failed.");
     return 0;
@@ -93,13 +97,9 @@ int vtkGeoMipMapFractalSource::RequestData(
 
   // The whole extent is produced regardless of the requested piece: the terrain is cheap
   // next to anything downstream and the LOD engine needs all of it.
-  output->SetExtent(0, hf.nx - 1, 0, hf.ny - 1, 0, 0);
+  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
   output->SetSpacing(this->Spacing, this->Spacing, 1.0);
   output->SetOrigin(0.0, 0.0, 0.0);
-  vtkNew<vtkFloatArray> heights;
-  heights->SetName("Elevation");
-  heights->SetNumberOfTuples(static_cast<vtkIdType>(hf.z.size()));
-  std::memcpy(heights->GetPointer(0), hf.z.data(), hf.z.size() * sizeof(float));
   output->GetPointData()->SetScalars(heights);
   this->UpdateProgress(1.0);
   return 1;

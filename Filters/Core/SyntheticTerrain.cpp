@@ -139,6 +139,17 @@ Heightfield makeSyntheticTerrain(
   hf.ny = ny;
   hf.dx = hf.dy = spacing;
   hf.z.resize(static_cast<std::size_t>(nx) * ny);
+  fillSyntheticTerrain(hf.z.data(), nx, ny, spacing, seed, amplitude, threads);
+  return hf;
+}
+
+bool fillSyntheticTerrain(
+  float* out, int nx, int ny, double spacing, uint32_t seed, double amplitude, int threads)
+{
+  if (nx < 1 || ny < 1 || !std::isfinite(spacing) || spacing <= 0.0 || !std::isfinite(amplitude))
+  {
+    return false;
+  }
 
   // Largest wavelength in metres (see header), then octaves down to two samples.
   const double extent = std::max(std::max(nx, ny) - 1, 1) * spacing;
@@ -192,7 +203,7 @@ Heightfield makeSyntheticTerrain(
         gain *= 0.42; // H ~ 1.25: smoother than Brownian, like eroded ranges
       }
       // Raw height, unscaled: ridges lifted where the broad massif is high.
-      float* row = hf.z.data() + static_cast<std::size_t>(j) * nx;
+      float* row = out + static_cast<std::size_t>(j) * nx;
       float lo = std::numeric_limits<float>::max(), hi = -lo;
       for (int i = 0; i < nx; ++i)
       {
@@ -217,7 +228,7 @@ Heightfield makeSyntheticTerrain(
   runThreads(nThreads, [&]() {
     for (int j = nextRow.fetch_add(1); j < ny; j = nextRow.fetch_add(1))
     {
-      float* row = hf.z.data() + static_cast<std::size_t>(j) * nx;
+      float* row = out + static_cast<std::size_t>(j) * nx;
       for (int i = 0; i < nx; ++i)
       {
         const double t = (row[i] - lo) * scale;
@@ -225,7 +236,7 @@ Heightfield makeSyntheticTerrain(
       }
     }
   });
-  return hf;
+  return true;
 }
 
 } // namespace gmm

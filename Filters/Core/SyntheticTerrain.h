@@ -29,4 +29,10 @@ namespace gmm
 Heightfield makeSyntheticTerrain(int nx, int ny, double spacing, uint32_t seed,
   double amplitude = 1500.0, int threads = 0);
 
+// The same heights written into `out` (nx * ny floats, row-major), e.g. straight into a VTK
+// array so that a large DEM is never held twice. Returns false (nothing written) for the
+// arguments makeSyntheticTerrain refuses.
+bool fillSyntheticTerrain(float* out, int nx, int ny, double spacing, uint32_t seed,
+  double amplitude = 1500.0, int threads = 0);
+
 } // namespace gmm

@@ -1,0 +1,139 @@
+#include "vtkGeoMipMapTerrain.h"
+
+#include "vtkGeoMipMapConversion.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseKey.h"
+#include "vtkMatrix3x3.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
+
+#include <array>
+#include <chrono>
+
+vtkStandardNewMacro(vtkGeoMipMapTerrain);
+vtkInformationKeyMacro(vtkGeoMipMapTerrain, TERRAIN, ObjectBase);
+
+// What the terrain was built from: the geometry by value, the heights by identity and MTime.
+struct vtkGeoMipMapTerrain::Signature
+{
+  std::array<int, 6> Extent;
+  std::array<double, 3> Origin, Spacing;
+  std::array<double, 9> Direction;
+  vtkWeakPointer<vtkDataArray> Heights;
+  vtkMTimeType HeightsTime = 0;
+  int BlockSize = 0;
+
+  static Signature Of(vtkImageData* image, vtkDataArray* heights, int blockSize)
+  {
+    Signature s;
+    image->GetExtent(s.Extent.data());
+    image->GetOrigin(s.Origin.data());
+    image->GetSpacing(s.Spacing.data());
+    vtkMatrix3x3::DeepCopy(s.Direction.data(), image->GetDirectionMatrix());
+    s.Heights = heights;
+    s.HeightsTime = heights ? heights->GetMTime() : 0;
+    s.BlockSize = blockSize;
+    return s;
+  }
+
+  bool operator==(const Signature& o) const
+  {
+    return this->Extent == o.Extent && this->Origin == o.Origin && this->Spacing == o.Spacing &&
+      this->Direction == o.Direction && this->Heights && this->Heights == o.Heights &&
+      this->HeightsTime == o.HeightsTime && this->BlockSize == o.BlockSize;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapTerrain::vtkGeoMipMapTerrain() = default;
+vtkGeoMipMapTerrain::~vtkGeoMipMapTerrain() = default;
+
+//------------------------------------------------------------------------------
+vtkDataArray* vtkGeoMipMapTerrain::GetHeights() const
+{
+  return this->Built ? this->Built->Heights.GetPointer() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGeoMipMapTerrain::IsCurrentFor(vtkImageData* image, vtkDataArray* heights, int blockSize) const
+{
+  return this->Terrain && this->Built && *this->Built == Signature::Of(image, heights, blockSize);
+}
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Get(
+  vtkImageData* image, int blockSize, vtkAlgorithm* progress, std::string& error)
+{
+  error.clear();
+  if (!image)
+  {
+    error = "no input image";
+    return nullptr;
+  }
+  vtkDataArray* heights = image->GetPointData()->GetScalars();
+  auto* cached = vtkGeoMipMapTerrain::SafeDownCast(image->GetInformation()->Get(TERRAIN()));
+  if (cached && cached->IsCurrentFor(image, heights, blockSize))
+  {
+    return cached;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  gmm::Heightfield hf;
+  error = vtkGeoMipMapConversion::ImageToHeightfield(image, hf);
+  std::shared_ptr<const gmm::Terrain> terrain;
+  if (error.empty())
+  {
+    gmm::ProgressFn report;
+    if (progress)
+    {
+      report = [progress](double f) { progress->UpdateProgress(f); };
+    }
+    error = gmm::buildTerrain(std::move(hf), blockSize, 0, terrain, report);
+  }
+  if (!error.empty())
+  {
+    return nullptr;
+  }
+  vtkNew<vtkGeoMipMapTerrain> built;
+  built->Terrain = std::move(terrain);
+  built->Built.reset(new Signature(Signature::Of(image, heights, blockSize)));
+  built->BuildTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  image->GetInformation()->Set(TERRAIN(), built); // the image holds it; so do the callers
+  return built;
+}
+
+//------------------------------------------------------------------------------
+size_t vtkGeoMipMapTerrain::GetMemoryBytes() const
+{
+  if (!this->Terrain)
+  {
+    return 0;
+  }
+  const gmm::Terrain& t = *this->Terrain;
+  size_t bytes = t.hf.z.capacity() * sizeof(float);
+  bytes += t.qt.nodes.capacity() * sizeof(gmm::QuadtreeNode) +
+    t.qt.blockBox.capacity() * sizeof(gmm::Box) + t.qt.blockHasNodata.capacity();
+  bytes += (t.table.ownError.capacity() + t.table.ownErrorExact.capacity() +
+             t.table.stripError.capacity()) * sizeof(float);
+  return bytes;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapTerrain::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  if (this->Terrain)
+  {
+    os << indent << "Samples: " << this->Terrain->hf.nx << " x " << this->Terrain->hf.ny << "\n";
+    os << indent << "BlockSize: " << this->Terrain->maxBlockQuads << "\n";
+    os << indent << "HeightsShared: " << (this->Terrain->hf.external != nullptr) << "\n";
+  }
+  os << indent << "BuildTime: " << this->BuildTime << "\n";
+  os << indent << "MemoryBytes: " << this->GetMemoryBytes() << "\n";
+}

@@ -1,0 +1,91 @@
+/**
+ * @class   vtkGeoMipMapTerrain
+ * @brief   The engine's terrain (heightfield, quadtree, error tables) of one DEM image,
+ *          built once and shared by every consumer of that image.
+ *
+ * vtkGeoMipMapMapper, vtkGeoMipMapFilter and vtkGeoMipMapPicker all need the same
+ * gmm::Terrain for an image. Get() returns the one cached on the image (in its
+ * information, key TERRAIN()) while it is current: same geometry (dimensions, extent,
+ * origin, spacing, direction), same heights array with the same MTime, same block size.
+ * Otherwise it builds a new one (progress reported through the given algorithm's
+ * UpdateProgress), caches it on the image and returns it. So a mapper and a filter over
+ * one image build the tables once, and a second mapper rendering the same image in
+ * another window builds nothing.
+ *
+ * Float heights are shared with the image's array (no second copy of a large DEM) when
+ * they are one component with nothing to sanitise; other types are converted to a float
+ * copy for the engine (the mapper still uploads 16-bit heights as they are).
+ *
+ * Not wrapped: it exposes gmm:: types. Listed as a NOWRAP header of geomipmap::Filters.
+ */
+#ifndef vtkGeoMipMapTerrain_h
+#define vtkGeoMipMapTerrain_h
+
+#include "geomipmapFiltersModule.h" // For export macro
+#include "vtkObject.h"
+
+#include "Terrain.h" // gmm::Terrain
+
+#include <memory> // For std::shared_ptr
+#include <string> // For std::string
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkImageData;
+class vtkInformationObjectBaseKey;
+
+class GEOMIPMAPFILTERS_EXPORT vtkGeoMipMapTerrain : public vtkObject
+{
+public:
+  static vtkGeoMipMapTerrain* New();
+  vtkTypeMacro(vtkGeoMipMapTerrain, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * The terrain of `image` (heights: its active point scalars, component 0) at
+   * `blockSize`: cached or built now. `progress` (may be null) receives UpdateProgress
+   * during a build. Returns null and sets `error` when the image or block size cannot be
+   * used.
+   */
+  static vtkGeoMipMapTerrain* Get(
+    vtkImageData* image, int blockSize, vtkAlgorithm* progress, std::string& error);
+
+  /**
+   * Key of the cache in the image's information.
+   */
+  static vtkInformationObjectBaseKey* TERRAIN();
+
+  const std::shared_ptr<const gmm::Terrain>& GetTerrain() const { return this->Terrain; }
+  vtkDataArray* GetHeights() const;
+
+  ///@{
+  /**
+   * Wall time of the build (conversion, quadtree, error tables), in seconds.
+   */
+  vtkGetMacro(BuildTime, double);
+  ///@}
+
+  /**
+   * Bytes the terrain holds beyond the image: the quadtree, the error tables, and the
+   * heights when they could not be shared.
+   */
+  size_t GetMemoryBytes() const;
+
+protected:
+  vtkGeoMipMapTerrain();
+  ~vtkGeoMipMapTerrain() override;
+
+private:
+  vtkGeoMipMapTerrain(const vtkGeoMipMapTerrain&) = delete;
+  void operator=(const vtkGeoMipMapTerrain&) = delete;
+
+  bool IsCurrentFor(vtkImageData* image, vtkDataArray* heights, int blockSize) const;
+
+  std::shared_ptr<const gmm::Terrain> Terrain;
+  struct Signature;
+  std::unique_ptr<Signature> Built;
+  double BuildTime = 0.0;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGeoMipMapTerrain.h
