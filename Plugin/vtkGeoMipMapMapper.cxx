@@ -1,36 +1,150 @@
 #include "vtkGeoMipMapMapper.h"
 
 #include "vtkGeoMipMapConversion.h"
+#include "vtkGeoMipMapShaders.h"
+#include "vtkGeoMipMapTerrain.h"
+#include "vtkGeoMipMapTextures.h"
 
 #include "vtkActor.h"
 #include "vtkCommand.h"
-#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLActor.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLHelper.h"
 #include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLRenderTimer.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLTexture.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
 #include "vtkTexture.h"
+#include "vtkTextureObject.h"
+#include "vtkWeakPointer.h"
+#include "vtk_glew.h"
 
 #include "Engine.h"
+#include "RayCast.h"
 
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <sstream>
 #include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+}
+
+namespace
+{
+// x, y bounds of the rows and columns that hold a valid sample; false when none does.
+// Blocks without nodata are taken whole; only blocks with nodata are scanned.
+bool ValidSampleBounds(const gmm::Terrain& t, double xy[4])
+{
+  const gmm::Heightfield& hf = t.hf;
+  std::vector<uint8_t> colValid(hf.nx, 0), rowValid(hf.ny, 0);
+  bool any = false;
+  for (int b = 0; b < t.qt.blockCount(); ++b)
+  {
+    const int c = b % t.qt.blockCols, r = b / t.qt.blockCols;
+    const int i0 = t.qt.colStart[c], i1 = t.qt.colStart[c + 1];
+    const int j0 = t.qt.rowStart[r], j1 = t.qt.rowStart[r + 1];
+    if (!t.qt.blockHasNodata[b])
+    {
+      std::fill(colValid.begin() + i0, colValid.begin() + i1 + 1, 1);
+      std::fill(rowValid.begin() + j0, rowValid.begin() + j1 + 1, 1);
+      any = true;
+      continue;
+    }
+    for (int j = j0; j <= j1; ++j)
+    {
+      for (int i = i0; i <= i1; ++i)
+      {
+        if (!std::isnan(hf.height(i, j)))
+        {
+          colValid[i] = rowValid[j] = 1;
+          any = true;
+        }
+      }
+    }
+  }
+  xy[0] = xy[2] = VTK_DOUBLE_MAX;
+  xy[1] = xy[3] = -VTK_DOUBLE_MAX;
+  for (int i = 0; i < hf.nx; ++i)
+  {
+    if (colValid[i])
+    {
+      xy[0] = std::min(xy[0], hf.worldX(i));
+      xy[1] = std::max(xy[1], hf.worldX(i));
+    }
+  }
+  for (int j = 0; j < hf.ny; ++j)
+  {
+    if (rowValid[j])
+    {
+      xy[2] = std::min(xy[2], hf.worldY(j));
+      xy[3] = std::max(xy[3], hf.worldY(j));
+    }
+  }
+  return any;
+}
+} // namespace
 
 struct vtkGeoMipMapMapper::Internals
 {
   gmm::Engine Engine;
-  bool HaveEngine = false;
-  std::vector<unsigned int> Upload; // scratch for wireframe edges
+  vtkSmartPointer<vtkGeoMipMapTerrain> Terrain;
+
+  // What VTK's vertex-buffer machinery sees: one vertex with a normal (and texture
+  // coordinates while textured), so that it declares the shader inputs our code replaces.
+  vtkNew<vtkPolyData> Proxy;
+
+  // GPU data, all in the context of Window.
+  vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+  vtkGeoMipMapTileLayout Layout;
+  vtkGeoMipMapSampleTexture Heights;
+  vtkGeoMipMapSampleTexture Colors; // a second colouring array (scalars or RGBA)
+  vtkGeoMipMapColorTable Table;
+  vtkGeoMipMapShaders::Options Shading;
+  std::map<const vtkOpenGLHelper*, std::string> ShaderKeys; // per helper: key built for
+  int HeightsUnit = -1, ColorsUnit = -1, TableUnit = -1;
+  bool ReportedCellScalars = false;
+
+  // Model coordinates are relative to the anchor sample (near the camera) and a reference
+  // height; AnchorShift is their translation, transposed as VTK's key matrices are.
+  int AnchorI = 0, AnchorJ = 0;
+  float HeightRef = 0.0f;
+  vtkNew<vtkMatrix4x4> AnchorShift;
+  vtkNew<vtkMatrix4x4> Temp;
+
+  std::vector<unsigned int> Lines; // scratch for wireframe edges
+  size_t IndexBytes = 0;
+
+  // x, y bounds of the valid samples of Terrain (found once per terrain).
+  const gmm::Terrain* BoundsOf = nullptr;
+  double ValidXY[4] = { 0, 0, 0, 0 };
+  bool AnyValid = false;
 };
 
 vtkStandardNewMacro(vtkGeoMipMapMapper);
@@ -39,11 +153,23 @@ vtkStandardNewMacro(vtkGeoMipMapMapper);
 vtkGeoMipMapMapper::vtkGeoMipMapMapper()
   : Internal(new Internals)
 {
-  vtkMath::UninitializeBounds(this->ValidBounds);
+  vtkNew<vtkPoints> p;
+  p->InsertNextPoint(0.0, 0.0, 0.0);
+  vtkNew<vtkFloatArray> n;
+  n->SetName("Normals");
+  n->SetNumberOfComponents(3);
+  n->InsertNextTuple3(0.0, 0.0, 1.0);
+  this->Internal->Proxy->SetPoints(p);
+  this->Internal->Proxy->GetPointData()->SetNormals(n);
+  // Colours come from the shaders; VTK must not map (absent) proxy scalars.
+  this->InterpolateScalarsBeforeMapping = 0;
 }
 
 //------------------------------------------------------------------------------
-vtkGeoMipMapMapper::~vtkGeoMipMapMapper() = default;
+vtkGeoMipMapMapper::~vtkGeoMipMapMapper()
+{
+  this->ReleaseWindowResources();
+}
 
 //------------------------------------------------------------------------------
 int vtkGeoMipMapMapper::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
@@ -61,12 +187,12 @@ void vtkGeoMipMapMapper::SetInputData(vtkImageData* image)
 //------------------------------------------------------------------------------
 void vtkGeoMipMapMapper::ModifiedIndicesOnly()
 {
-  // Remember this MTime as "indices only" when the VBOs were current before it, so
-  // GetNeedToRebuildBufferObjects does not re-upload every vertex for a new tau.
+  // Remember this MTime as "indices only" when the buffers were current before it, so
+  // GetNeedToRebuildBufferObjects does not rebuild them for a new tau.
   const vtkMTimeType m = this->GetMTime();
-  const bool vbosCurrent = this->VBOBuildTime >= m || m == this->IndicesOnlyMTime;
+  const bool buffersCurrent = this->VBOBuildTime >= m || m == this->IndicesOnlyMTime;
   this->Modified();
-  if (vbosCurrent)
+  if (buffersCurrent)
   {
     this->IndicesOnlyMTime = this->GetMTime();
   }
@@ -81,17 +207,23 @@ void vtkGeoMipMapMapper::SetPixelError(double tau)
   }
 }
 
-//------------------------------------------------------------------------------
+int vtkGeoMipMapMapper::GetMinimumBlockSize()
+{
+  return gmm::kMinBlockQuads;
+}
+
 void vtkGeoMipMapMapper::SetBlockSize(int quads)
 {
-  if (quads < 2)
+  if (vtkGeoMipMapConversion::AcceptBlockSize(this, quads, this->BlockSize))
   {
-    vtkErrorMacro("BlockSize must be >= 2, got " << quads << "; keeping " << this->BlockSize);
-    return;
+    this->ModifiedIndicesOnly();
   }
-  if (quads != this->BlockSize)
+}
+
+void vtkGeoMipMapMapper::SetHeightScale(double scale)
+{
+  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->HeightScale))
   {
-    this->BlockSize = quads;
     this->ModifiedIndicesOnly();
   }
 }
@@ -114,106 +246,70 @@ double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
 {
   return this->LastFrameDrawn ? this->Internal->Engine.stats().maxScreenError : 0.0;
 }
+double vtkGeoMipMapMapper::GetMaximumGeometricError() const
+{
+  return this->LastFrameDrawn ? this->Internal->Engine.stats().maxGeometricError : 0.0;
+}
 bool vtkGeoMipMapMapper::GetIndicesReused() const
 {
   return this->LastFrameDrawn ? this->Internal->Engine.stats().reused : false;
 }
 
-//------------------------------------------------------------------------------
-bool vtkGeoMipMapMapper::UpdateMesh(vtkImageData* image)
+vtkTypeInt64 vtkGeoMipMapMapper::GetGPUMemoryBytes() const
 {
-  if (this->Internal->HaveEngine && image->GetMTime() == this->MeshInputTime &&
-    this->BlockSize == this->MeshBlockSize)
-  {
-    return true;
-  }
-  gmm::Heightfield hf;
-  std::string err = vtkGeoMipMapConversion::ImageToHeightfield(image, hf);
-  if (err.empty())
-  {
-    err = this->Internal->Engine.setHeightfield(hf, this->BlockSize);
-  }
-  this->Internal->HaveEngine = err.empty();
-  this->MeshInputTime = image->GetMTime();
-  this->MeshBlockSize = this->BlockSize;
-  this->IndicesDirty = true;
-  if (!err.empty())
-  {
-    vtkErrorMacro("Cannot use the input image: " << err);
-    this->Mesh->Initialize();
-    return false;
-  }
-  // The mesh (and its VBOs) depends on the samples only: a new block size keeps it.
-  if (this->MeshVerticesTime == this->MeshInputTime && this->Mesh->GetNumberOfPoints() > 0)
-  {
-    return true;
-  }
-  const gmm::Heightfield& h = this->Internal->Engine.heightfield();
-  const vtkIdType n = static_cast<vtkIdType>(h.z.size());
-  vtkNew<vtkDoubleArray> xyz; // double: the VBO shift/scale then works from exact values
-  xyz->SetNumberOfComponents(3);
-  xyz->SetNumberOfTuples(n);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  double* p = xyz->GetPointer(0);
-  float* nn = normals->GetPointer(0);
-  double zmin = std::numeric_limits<double>::max(), zmax = -zmin;
-  for (float z : h.z)
-  {
-    if (std::isfinite(z))
-    {
-      zmin = std::min(zmin, static_cast<double>(z));
-      zmax = std::max(zmax, static_cast<double>(z));
-    }
-  }
-  const double zfill = zmin <= zmax ? zmin : 0.0;
-  for (int j = 0; j < h.ny; ++j)
-  {
-    for (int i = 0; i < h.nx; ++i)
-    {
-      const std::size_t k = h.index(i, j);
-      const float z = h.z[k];
-      // Nodata vertices are never referenced; a finite height keeps bounds and the VBO
-      // shift/scale sane.
-      p[3 * k] = h.worldX(i);
-      p[3 * k + 1] = h.worldY(j);
-      p[3 * k + 2] = std::isfinite(z) ? z : zfill;
-      vtkGeoMipMapConversion::SampleNormal(h, i, j, nn + 3 * k);
-    }
-  }
-  vtkNew<vtkPoints> points;
-  points->SetData(xyz);
-  this->Mesh->Initialize();
-  this->Mesh->SetPoints(points);
-  this->Mesh->GetPointData()->SetNormals(normals);
-  if (vtkDataArray* s = image->GetPointData()->GetScalars())
-  {
-    this->Mesh->GetPointData()->SetScalars(s); // shared, not copied: colours via the LUT
-  }
-  this->Mesh->Modified();
-  this->MeshVerticesTime = this->MeshInputTime;
-  double* b = this->ValidBounds;
-  b[0] = std::min(h.worldX(0), h.worldX(h.nx - 1));
-  b[1] = std::max(h.worldX(0), h.worldX(h.nx - 1));
-  b[2] = std::min(h.worldY(0), h.worldY(h.ny - 1));
-  b[3] = std::max(h.worldY(0), h.worldY(h.ny - 1));
-  b[4] = zmin <= zmax ? zmin : 0.0;
-  b[5] = zmin <= zmax ? zmax : 0.0;
-  return true;
+  const Internals& in = *this->Internal;
+  return static_cast<vtkTypeInt64>(
+    in.Heights.GetBytes() + in.Colors.GetBytes() + in.Table.GetBytes() + in.IndexBytes);
 }
 
 //------------------------------------------------------------------------------
-void vtkGeoMipMapMapper::ComputeBounds()
+bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
 {
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
-  if (!image || !this->UpdateMesh(image))
+  Internals& in = *this->Internal;
+  // Refuse before anything large is allocated: the tables are small next to the samples,
+  // so the estimate is the textures plus a float copy when the heights cannot be shared.
+  vtkDataArray* heights = image->GetPointData()->GetScalars();
+  if (heights && (!in.Terrain || in.Terrain->GetHeights() != heights ||
+                   !in.Heights.IsCurrent(heights, vtkGeoMipMapSampleTexture::FormatFor(heights, false))))
   {
-    vtkMath::UninitializeBounds(this->Bounds);
-    return;
+    const double samples = static_cast<double>(image->GetNumberOfPoints());
+    const auto format = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
+    double need = samples * vtkGeoMipMapSampleTexture::BytesPerTexel(format);
+    if (!(heights->GetDataType() == VTK_FLOAT && heights->GetNumberOfComponents() == 1))
+    {
+      need += samples * sizeof(float);
+    }
+    const double have = this->MemoryLimit > 0 ? static_cast<double>(this->MemoryLimit)
+                                              : vtkGeoMipMapConversion::AvailableMemoryBytes();
+    if (have > 0 && need > have)
+    {
+      int dims[3];
+      image->GetDimensions(dims);
+      vtkErrorMacro(<< "The DEM of " << dims[0] << " x " << dims[1] << " samples needs about "
+                    << need / 1048576.0 << " MiB (heights on the GPU, engine tables), more than the "
+                    << have / 1048576.0 << " MiB "
+                    << (this->MemoryLimit > 0 ? "of MemoryLimit" : "available") << "; not drawn");
+      return false;
+    }
   }
-  std::copy(this->ValidBounds, this->ValidBounds + 6, this->Bounds);
+  std::string err;
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err);
+  if (!terrain)
+  {
+    in.Terrain = nullptr;
+    in.Engine.setTerrain(nullptr);
+    vtkErrorMacro("Cannot use the input image: " << err);
+    return false;
+  }
+  if (terrain != in.Terrain)
+  {
+    in.Terrain = terrain;
+    in.Engine.setTerrain(terrain->GetTerrain());
+    this->LastTerrainBuildTime = terrain->GetBuildTime();
+    this->IndicesDirty = true;
+  }
+  in.Engine.setHeightScale(this->HeightScale);
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -232,16 +328,101 @@ double* vtkGeoMipMapMapper::GetBounds()
   return this->Bounds;
 }
 
-//------------------------------------------------------------------------------
-void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+void vtkGeoMipMapMapper::ComputeBounds()
 {
-  if (ren->GetRenderWindow()->CheckAbortStatus())
+  vtkMath::UninitializeBounds(this->Bounds);
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!image || !this->UpdateTerrain(image))
   {
     return;
   }
-  // vtkOpenGLPolyDataMapper::RenderPiece registers a resource-free callback here, but its
-  // class header is not installed by Debian's VTK 9.1. Our buffers are still released by
-  // ReleaseGraphicsResources when the window or the actor lets go of them.
+  Internals& in = *this->Internal;
+  const gmm::Terrain& t = *in.Terrain->GetTerrain();
+  if (in.BoundsOf != &t)
+  {
+    in.BoundsOf = &t;
+    in.AnyValid = ValidSampleBounds(t, in.ValidXY);
+  }
+  if (!in.AnyValid)
+  {
+    return;
+  }
+  std::copy(in.ValidXY, in.ValidXY + 4, this->Bounds);
+  const gmm::Box& root = t.qt.nodes[0].box;
+  this->Bounds[4] = t.hf.z0 + this->HeightScale * root.lo.z;
+  this->Bounds[5] = t.hf.z0 + this->HeightScale * root.hi.z;
+}
+
+//------------------------------------------------------------------------------
+double vtkGeoMipMapMapper::GetHeightAt(double x, double y)
+{
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!this->Static && this->GetNumberOfInputConnections(0))
+  {
+    this->Update();
+    image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  }
+  if (!image || !this->UpdateTerrain(image))
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return gmm::heightAt(this->Internal->Terrain->GetTerrain()->hf, x, y, this->HeightScale);
+}
+
+bool vtkGeoMipMapMapper::IntersectWithLine(const double p1[3], const double p2[3], double& t,
+  double x[3], double normal[3], vtkIdType& pointId, vtkIdType& cellId)
+{
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!image || !this->UpdateTerrain(image))
+  {
+    return false;
+  }
+  const gmm::Terrain& terrain = *this->Internal->Terrain->GetTerrain();
+  const gmm::SurfaceHit hit = gmm::intersectSegment(terrain, glm::dvec3(p1[0], p1[1], p1[2]),
+    glm::dvec3(p2[0], p2[1], p2[2]), this->HeightScale);
+  if (!hit.hit)
+  {
+    return false;
+  }
+  t = hit.t;
+  for (int k = 0; k < 3; ++k)
+  {
+    x[k] = hit.point[k];
+    normal[k] = hit.normal[k];
+  }
+  // The hit triangle's vertex nearest to the hit, in x, y (all three are valid samples).
+  const gmm::Heightfield& hf = terrain.hf;
+  double best = VTK_DOUBLE_MAX;
+  for (uint32_t v : hit.vertex)
+  {
+    const double dx = hf.worldX(v % hf.nx) - x[0], dy = hf.worldY(v / hf.nx) - x[1];
+    if (dx * dx + dy * dy < best)
+    {
+      best = dx * dx + dy * dy;
+      pointId = static_cast<vtkIdType>(v);
+    }
+  }
+  cellId = static_cast<vtkIdType>(hit.cellJ) * (hf.nx - 1) + hit.cellI;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+{
+  vtkOpenGLRenderWindow* win = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!win || win->CheckAbortStatus())
+  {
+    return;
+  }
+  Internals& in = *this->Internal;
+  // GPU data belong to one context: drawing in another window frees them there first
+  // (VTK's stock mappers do the same through a callback whose header Debian does not ship).
+  if (in.Window && in.Window != win)
+  {
+    this->ReleaseWindowResources();
+    win->MakeCurrent();
+  }
+  in.Window = win;
 
   // Until the engine has run for this frame, the statistics say "nothing drawn" (an
   // input or camera error below must not leave the previous frame's figures behind).
@@ -259,12 +440,12 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("No input image.");
     return;
   }
-  if (!this->UpdateMesh(image) || this->Mesh->GetNumberOfPoints() == 0)
+  if (!this->UpdateTerrain(image) || in.Engine.empty())
   {
     return;
   }
 
-  // LOD for the camera being rendered, in the data's coordinates.
+  // LOD for the camera being rendered; the actor's matrix goes to the engine whole.
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   gmm::View view;
@@ -275,21 +456,63 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("Cannot use the camera: " << err);
     return;
   }
-  const auto start = std::chrono::steady_clock::now();
-  const gmm::FrameStats& stats = this->Internal->Engine.update(view, this->PixelError);
-  this->LastUpdateTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!this->Internal->Engine.lastError().empty())
+  const auto start = Clock::now();
+  const gmm::FrameStats& stats = in.Engine.update(view, this->PixelError);
+  this->LastUpdateTime = SecondsSince(start);
+  if (!in.Engine.lastError().empty())
   {
-    vtkErrorMacro("LOD update failed: " << this->Internal->Engine.lastError());
+    vtkErrorMacro("LOD update failed: " << in.Engine.lastError());
+    return;
   }
   this->LastFrameDrawn = true;
   this->IndicesDirty = this->IndicesDirty || !stats.reused;
-  // LastIndexUploadTime (0 above) is accumulated by UploadIndices during this frame.
+  if (stats.triangles == 0)
+  {
+    return;
+  }
+  if (!this->UpdateTextures(win, image, act))
+  {
+    this->LastFrameDrawn = false;
+    return;
+  }
 
-  this->CurrentInput = this->Mesh;
-  this->UpdateCameraShiftScale(ren, act);
-  this->RenderPieceStart(ren, act); // may rebuild VBOs, and then the IBO through BuildIBO
+  // Anchor: the sample under the camera (in data coordinates), clamped to the grid.
+  const gmm::Heightfield& hf = in.Engine.heightfield();
+  double eye[4] = { view.eye.x, view.eye.y, view.eye.z, 1.0 };
+  if (!act->GetIsIdentity())
+  {
+    vtkNew<vtkMatrix4x4> inv;
+    vtkMatrix4x4::Invert(act->GetMatrix(), inv);
+    inv->MultiplyPoint(eye, eye);
+  }
+  in.AnchorI = static_cast<int>(vtkMath::ClampValue(std::round((eye[0] - hf.x0) / hf.dx), 0.0, hf.nx - 1.0));
+  in.AnchorJ = static_cast<int>(vtkMath::ClampValue(std::round((eye[1] - hf.y0) / hf.dy), 0.0, hf.ny - 1.0));
+  const gmm::Box& root = in.Engine.quadtree().nodes[0].box;
+  in.HeightRef = static_cast<float>(0.5 * (root.lo.z + root.hi.z));
+  in.AnchorShift->Identity();
+  in.AnchorShift->SetElement(3, 0, hf.worldX(in.AnchorI));
+  in.AnchorShift->SetElement(3, 1, hf.worldY(in.AnchorJ));
+  in.AnchorShift->SetElement(3, 2, hf.z0 + this->HeightScale * static_cast<double>(in.HeightRef));
+
+  // Texture coordinates only while textured: the proxy then declares them to VTK.
+  const bool textured = act->GetTexture() != nullptr || act->GetProperty()->GetNumberOfTextures() > 0;
+  vtkPointData* pd = in.Proxy->GetPointData();
+  if (textured && !pd->GetTCoords())
+  {
+    vtkNew<vtkFloatArray> tc;
+    tc->SetName("TCoords");
+    tc->SetNumberOfComponents(2);
+    tc->InsertNextTuple2(0.0, 0.0);
+    pd->SetTCoords(tc);
+  }
+  else if (!textured && pd->GetTCoords())
+  {
+    pd->RemoveArray("TCoords");
+  }
+  in.Shading.TextureCoordinates = textured;
+
+  this->CurrentInput = in.Proxy;
+  this->RenderPieceStart(ren, act); // may rebuild buffers, and then the IBO through BuildIBO
   if (this->IndicesDirty)
   {
     this->UploadIndices(act);
@@ -299,52 +522,90 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
-void vtkGeoMipMapMapper::UpdateTextureCoordinates(bool wanted)
+bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData* image, vtkActor*)
 {
-  vtkPointData* pd = this->Mesh->GetPointData();
-  const vtkIdType n = this->Mesh->GetNumberOfPoints();
-  if (!wanted || n == 0)
+  Internals& in = *this->Internal;
+  const gmm::Heightfield& hf = in.Engine.heightfield();
+  vtkDataArray* heights = in.Terrain->GetHeights();
+  GLint maxLayers = 256;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  std::string err = in.Layout.Plan(hf.nx, hf.ny, vtkTextureObject::GetMaximumTextureSize(win), maxLayers);
+  const auto heightFormat = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
+  if (err.empty() && !in.Heights.IsCurrent(heights, heightFormat))
   {
-    if (pd->GetTCoords())
+    const auto start = Clock::now();
+    err = in.Heights.Upload(win, heights, heightFormat, in.Layout);
+    this->LastHeightUploadTime = SecondsSince(start);
+    ++this->NumberOfHeightUploads;
+  }
+  if (!err.empty())
+  {
+    vtkErrorMacro("Cannot store the heights on the GPU: " << err);
+    return false;
+  }
+  using O = vtkGeoMipMapShaders::Options;
+  in.Shading.HeightFormat = heightFormat == vtkGeoMipMapSampleTexture::Int16 ? O::Int16Heights
+    : heightFormat == vtkGeoMipMapSampleTexture::UInt16                     ? O::UInt16Heights
+                                                                             : O::FloatHeights;
+
+  // Colouring: the array VTK's own mappers would colour by, on the GPU as well.
+  in.Shading.Color = O::PropertyColor;
+  int cellFlag = 0;
+  vtkDataArray* scalars = this->ScalarVisibility
+    ? vtkAbstractMapper::GetScalars(image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId,
+        this->ArrayName, cellFlag)
+    : nullptr;
+  if (scalars && cellFlag)
+  {
+    if (!in.ReportedCellScalars)
     {
-      pd->RemoveArray("TCoords");
+      vtkErrorMacro("Colouring by cell scalars is not supported; the actor's colour is used.");
+      in.ReportedCellScalars = true;
     }
-    return;
+    scalars = nullptr;
   }
-  if (pd->GetTCoords())
+  if (!scalars)
   {
-    return;
+    return true;
   }
-  // 0..1 over the extent, (i, j) order: a texture image maps onto the DEM as on the input.
-  const gmm::Heightfield& h = this->Internal->Engine.heightfield();
-  vtkNew<vtkFloatArray> tcoords;
-  tcoords->SetName("TCoords");
-  tcoords->SetNumberOfComponents(2);
-  tcoords->SetNumberOfTuples(n);
-  float* tc = tcoords->GetPointer(0);
-  const double su = h.nx > 1 ? 1.0 / (h.nx - 1) : 0.0, sv = h.ny > 1 ? 1.0 / (h.ny - 1) : 0.0;
-  for (int j = 0; j < h.ny; ++j)
+  const bool direct = scalars->GetDataType() == VTK_UNSIGNED_CHAR &&
+    this->ColorMode != VTK_COLOR_MODE_MAP_SCALARS;
+  if (!direct)
   {
-    for (int i = 0; i < h.nx; ++i)
+    vtkScalarsToColors* lut = this->GetLookupTable();
+    if (!this->UseLookupTableScalarRange)
     {
-      const std::size_t k = h.index(i, j);
-      tc[2 * k] = static_cast<float>(i * su);
-      tc[2 * k + 1] = static_cast<float>(j * sv);
+      lut->SetRange(this->ScalarRange);
+    }
+    lut->Build();
+    in.Table.Update(win, lut, lut->GetRange());
+  }
+  if (scalars == heights && !direct)
+  {
+    in.Shading.Color = O::MapHeights;
+    return true;
+  }
+  const auto format = vtkGeoMipMapSampleTexture::FormatFor(scalars, direct);
+  const auto stored = direct ? format : vtkGeoMipMapSampleTexture::Float32;
+  if (!in.Colors.IsCurrent(scalars, stored))
+  {
+    err = in.Colors.Upload(win, scalars, stored, in.Layout);
+    ++this->NumberOfHeightUploads;
+    if (!err.empty())
+    {
+      vtkErrorMacro("Cannot store the colouring array on the GPU: " << err);
+      return true; // draw with the actor's colour
     }
   }
-  pd->SetTCoords(tcoords);
+  in.Shading.Color = direct ? O::DirectColors : O::MapScalars;
+  return true;
 }
 
 //------------------------------------------------------------------------------
 bool vtkGeoMipMapMapper::GetNeedToRebuildBufferObjects(vtkRenderer*, vtkActor* act)
 {
-  // Texture coordinates only while the actor is textured: 8 bytes a sample in the mesh
-  // and again in the vertex buffer that an untextured scene never reads. Adding or
-  // removing them changes the mesh's MTime, hence the rebuild decided below.
-  this->UpdateTextureCoordinates(
-    act->GetTexture() != nullptr || act->GetProperty()->GetNumberOfTextures() > 0);
   // Same watch list as vtkOpenGLPolyDataMapper, except mapper changes that only alter
-  // the indices (PixelError, BlockSize).
+  // the indices (PixelError, BlockSize, HeightScale).
   this->TempState.Clear();
   this->TempState.Append(act->GetProperty()->GetMTime(), "prop mtime");
   this->TempState.Append(this->CurrentInput ? this->CurrentInput->GetMTime() : 0, "input mtime");
@@ -360,16 +621,9 @@ bool vtkGeoMipMapMapper::GetNeedToRebuildBufferObjects(vtkRenderer*, vtkActor* a
 }
 
 //------------------------------------------------------------------------------
-void vtkGeoMipMapMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
-{
-  ++this->NumberOfVertexUploads;
-  this->Superclass::BuildBufferObjects(ren, act);
-}
-
-//------------------------------------------------------------------------------
 void vtkGeoMipMapMapper::BuildIBO(vtkRenderer*, vtkActor* act, vtkPolyData*)
 {
-  // The mesh has no cells: the only primitive is the engine's triangles.
+  // The proxy has no cells: the only primitive is the engine's triangles.
   for (int i = PrimitiveStart; i < PrimitiveEnd; ++i)
   {
     this->Primitives[i].IBO->IndexCount = 0;
@@ -377,40 +631,21 @@ void vtkGeoMipMapMapper::BuildIBO(vtkRenderer*, vtkActor* act, vtkPolyData*)
   this->UploadIndices(act);
 }
 
-//------------------------------------------------------------------------------
-namespace
-{
-// Adds the time from its start to its destruction to a counter (every return path of
-// UploadIndices is timed).
-struct UploadTimer
-{
-  std::chrono::steady_clock::time_point Start;
-  double& Seconds;
-  ~UploadTimer()
-  {
-    this->Seconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
-  }
-};
-}
-
 void vtkGeoMipMapMapper::UploadIndices(vtkActor* act)
 {
+  const auto start = Clock::now();
   const std::vector<uint32_t>& tris = this->Internal->Engine.indices();
   vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
   ++this->NumberOfIndexUploads;
-  const auto start = std::chrono::steady_clock::now();
-  UploadTimer timer{ start, this->LastIndexUploadTime };
   this->IndicesDirty = false;
   if (tris.empty())
   {
     ibo->IndexCount = 0;
-    return;
   }
-  std::vector<unsigned int>& up = this->Internal->Upload;
-  if (act->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
+  else if (act->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
   {
     // The stock mapper draws wireframe triangles as GL_LINES: three edges per triangle.
+    std::vector<unsigned int>& up = this->Internal->Lines;
     up.resize(tris.size() * 2);
     for (std::size_t t = 0; t < tris.size(); t += 3)
     {
@@ -424,18 +659,244 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act)
     }
     ibo->Upload(up, vtkOpenGLBufferObject::ElementArrayBuffer);
     ibo->IndexCount = up.size();
-    return;
   }
-  // Triangles (GL_TRIANGLES) or points (GL_POINTS draws every referenced vertex).
-  ibo->Upload(tris, vtkOpenGLBufferObject::ElementArrayBuffer);
-  ibo->IndexCount = tris.size();
+  else
+  {
+    // Triangles (GL_TRIANGLES) or points (GL_POINTS draws every referenced vertex).
+    ibo->Upload(tris, vtkOpenGLBufferObject::ElementArrayBuffer);
+    ibo->IndexCount = tris.size();
+  }
+  this->Internal->IndexBytes = ibo->IndexCount * sizeof(unsigned int);
+  this->LastIndexUploadTime += SecondsSince(start);
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
+  if (!tris.IBO->IndexCount)
+  {
+    return;
+  }
+  in.HeightsUnit = in.Heights.Activate();
+  in.ColorsUnit = in.Shading.Color == vtkGeoMipMapShaders::Options::MapScalars ||
+      in.Shading.Color == vtkGeoMipMapShaders::Options::DirectColors
+    ? in.Colors.Activate()
+    : -1;
+  in.TableUnit = in.Shading.Color == vtkGeoMipMapShaders::Options::MapHeights ||
+      in.Shading.Color == vtkGeoMipMapShaders::Options::MapScalars
+    ? in.Table.Activate()
+    : -1;
+
+  const int representation = act->GetProperty()->GetRepresentation();
+  this->DrawingVertices = false;
+  this->DrawingSelection = false;
+  const GLenum mode = this->GetOpenGLMode(representation, PrimitiveTris);
+  this->UpdateShaders(tris, ren, act);
+  if (mode == GL_LINES && !this->HaveWideLines(ren, act))
+  {
+    static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())
+      ->GetState()
+      ->vtkglLineWidth(act->GetProperty()->GetLineWidth());
+  }
+  tris.IBO->Bind();
+  // glDrawElements, not VTK's glDrawRangeElements: the range would be the proxy's one
+  // vertex, while the indices address every sample.
+  glDrawElements(mode, static_cast<GLsizei>(tris.IBO->IndexCount), GL_UNSIGNED_INT, nullptr);
+  tris.IBO->Release();
+
+  if (in.TableUnit >= 0)
+  {
+    in.Table.Deactivate();
+  }
+  if (in.ColorsUnit >= 0)
+  {
+    in.Colors.Deactivate();
+  }
+  in.Heights.Deactivate();
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::ReplaceShaderValues(
+  std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
+{
+  vtkGeoMipMapShaders::PrepareTemplates(shaders);
+  this->Superclass::ReplaceShaderValues(shaders, ren, act);
+  vtkGeoMipMapShaders::InsertTerrainCode(shaders, this->Internal->Shading);
+  this->Internal->ShaderKeys[this->LastBoundBO] = this->Internal->Shading.Key();
+}
+
+bool vtkGeoMipMapMapper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  if (this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act))
+  {
+    return true;
+  }
+  auto it = this->Internal->ShaderKeys.find(&cellBO);
+  return it == this->Internal->ShaderKeys.end() || it->second != this->Internal->Shading.Key();
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::SetMapperShaderParameters(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
+  Internals& in = *this->Internal;
+  vtkShaderProgram* p = cellBO.Program;
+  const gmm::Heightfield& hf = in.Engine.heightfield();
+  auto seti = [p](const char* name, int v) {
+    if (p->IsUniformUsed(name))
+      p->SetUniformi(name, v);
+  };
+  auto set2i = [p](const char* name, int a, int b) {
+    const int v[2] = { a, b };
+    if (p->IsUniformUsed(name))
+      p->SetUniform2i(name, v);
+  };
+  auto setf = [p](const char* name, double v) {
+    if (p->IsUniformUsed(name))
+      p->SetUniformf(name, static_cast<float>(v));
+  };
+  seti("gmmHeights", in.HeightsUnit);
+  set2i("gmmGridSize", hf.nx, hf.ny);
+  set2i("gmmTileSize", in.Layout.tileW, in.Layout.tileH);
+  seti("gmmTilesX", in.Layout.tilesX);
+  const float spacing[2] = { static_cast<float>(hf.dx), static_cast<float>(hf.dy) };
+  if (p->IsUniformUsed("gmmSpacing"))
+  {
+    p->SetUniform2f("gmmSpacing", spacing);
+  }
+  setf("gmmHeightScale", this->HeightScale);
+  set2i("gmmAnchor", in.AnchorI, in.AnchorJ);
+  setf("gmmHeightRef", in.HeightRef);
+  seti("gmmColors", in.ColorsUnit);
+  seti("gmmScalars", in.ColorsUnit);
+  seti("gmmColorTable", in.TableUnit);
+  if (p->IsUniformUsed("gmmColorMap"))
+  {
+    const double* r = in.Table.GetRange();
+    const bool log = in.Table.GetLogScale();
+    const double lo = log ? std::log10(r[0]) : r[0];
+    const double hi = log ? std::log10(r[1]) : r[1];
+    const float map[4] = { static_cast<float>(lo), static_cast<float>(hi > lo ? 1.0 / (hi - lo) : 1.0),
+      log ? 1.0f : 0.0f, static_cast<float>(in.Table.GetEntries()) };
+    p->SetUniform4f("gmmColorMap", map);
+  }
+
+  // Clipping planes in model coordinates, which are relative to the anchor.
+  if (this->GetNumberOfClippingPlanes() && p->IsUniformUsed("clipPlanes"))
+  {
+    const int count = std::min(6, this->GetNumberOfClippingPlanes());
+    float planes[6][4] = {};
+    for (int i = 0; i < count; ++i)
+    {
+      double e[4];
+      this->GetClippingPlaneInDataCoords(act->GetMatrix(), i, e);
+      planes[i][0] = static_cast<float>(e[0]);
+      planes[i][1] = static_cast<float>(e[1]);
+      planes[i][2] = static_cast<float>(e[2]);
+      planes[i][3] = static_cast<float>(e[3] + e[0] * in.AnchorShift->GetElement(3, 0) +
+        e[1] * in.AnchorShift->GetElement(3, 1) + e[2] * in.AnchorShift->GetElement(3, 2));
+    }
+    p->SetUniform4fv("clipPlanes", 6, planes);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::SetCameraShaderParameters(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  this->Superclass::SetCameraShaderParameters(cellBO, ren, act);
+  // VTK's key matrices are transposed for OpenGL, so products read left to right from
+  // model coordinates: anchor shift, actor, then camera. All in double; only the results
+  // (small translations near the camera) are cast to float.
+  Internals& in = *this->Internal;
+  vtkShaderProgram* p = cellBO.Program;
+  vtkMatrix4x4 *wcdc, *wcvc, *vcdc;
+  vtkMatrix3x3* norms;
+  static_cast<vtkOpenGLCamera*>(ren->GetActiveCamera())->GetKeyMatrices(ren, wcvc, norms, vcdc, wcdc);
+  vtkNew<vtkMatrix4x4> mcwc;
+  mcwc->DeepCopy(in.AnchorShift);
+  if (!act->GetIsIdentity())
+  {
+    vtkMatrix4x4* actor;
+    vtkMatrix3x3* anorms;
+    static_cast<vtkOpenGLActor*>(act)->GetKeyMatrices(actor, anorms);
+    vtkMatrix4x4::Multiply4x4(in.AnchorShift, actor, mcwc);
+  }
+  if (p->IsUniformUsed("MCWCMatrix"))
+  {
+    p->SetUniformMatrix("MCWCMatrix", mcwc);
+  }
+  vtkMatrix4x4::Multiply4x4(mcwc, wcdc, in.Temp);
+  p->SetUniformMatrix("MCDCMatrix", in.Temp);
+  if (p->IsUniformUsed("MCVCMatrix"))
+  {
+    vtkMatrix4x4::Multiply4x4(mcwc, wcvc, in.Temp);
+    p->SetUniformMatrix("MCVCMatrix", in.Temp);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::ReleaseWindowResources()
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* win = in.Window;
+  in.ShaderKeys.clear();
+  in.IndexBytes = 0;
+  this->IndicesDirty = true;
+  if (!win)
+  {
+    return; // never drawn, or the window (and its context, with everything in it) is gone
+  }
+  win->PushContext();
+  in.Heights.Release(win);
+  in.Colors.Release(win);
+  in.Table.Release(win);
+  // What vtkOpenGLPolyDataMapper::ReleaseGraphicsResources frees, which it only does
+  // through its unregistered callback (see RenderPiece).
+  this->VBOs->ReleaseGraphicsResources(win);
+  for (int i = PrimitiveStart; i < PrimitiveEnd; ++i)
+  {
+    this->Primitives[i].ReleaseGraphicsResources(win);
+    this->SelectionPrimitives[i].ReleaseGraphicsResources(win);
+  }
+  for (vtkTextureObject* t : { this->CellScalarTexture, this->CellNormalTexture, this->EdgeTexture })
+  {
+    if (t)
+    {
+      t->ReleaseGraphicsResources(win);
+    }
+  }
+  for (vtkOpenGLBufferObject* b : { this->CellScalarBuffer, this->CellNormalBuffer, this->EdgeBuffer })
+  {
+    if (b)
+    {
+      b->ReleaseGraphicsResources();
+    }
+  }
+  if (this->InternalColorTexture)
+  {
+    this->InternalColorTexture->ReleaseGraphicsResources(win);
+  }
+  this->TimerQuery->ReleaseGraphicsResources();
+  this->VBOBuildState.Clear();
+  this->IBOBuildState.Clear();
+  this->CellTextureBuildState.Clear();
+  win->PopContext();
+  in.Window = nullptr;
+}
+
 void vtkGeoMipMapMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
-  this->Superclass::ReleaseGraphicsResources(win);
-  this->IndicesDirty = true;
+  // Only the window our GPU data live in can free them; another window releasing its
+  // resources holds none of ours.
+  if (win == this->Internal->Window.GetPointer())
+  {
+    this->ReleaseWindowResources();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -444,12 +905,15 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
+  os << indent << "HeightScale: " << this->HeightScale << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "NumberOfRenderedTriangles: " << this->GetNumberOfRenderedTriangles() << "\n";
   os << indent << "NumberOfVisibleBlocks: " << this->GetNumberOfVisibleBlocks() << "\n";
   os << indent << "NumberOfCulledBlocks: " << this->GetNumberOfCulledBlocks() << "\n";
   os << indent << "MaximumScreenSpaceError: " << this->GetMaximumScreenSpaceError() << "\n";
   os << indent << "LastUpdateTime: " << this->LastUpdateTime << "\n";
-  os << indent << "NumberOfVertexUploads: " << this->NumberOfVertexUploads << "\n";
+  os << indent << "NumberOfHeightUploads: " << this->NumberOfHeightUploads << "\n";
   os << indent << "NumberOfIndexUploads: " << this->NumberOfIndexUploads << "\n";
   os << indent << "LastIndexUploadTime: " << this->LastIndexUploadTime << "\n";
+  os << indent << "GPUMemoryBytes: " << this->GetGPUMemoryBytes() << "\n";
 }

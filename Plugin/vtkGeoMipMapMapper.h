@@ -1,44 +1,67 @@
 /**
  * @class   vtkGeoMipMapMapper
- * @brief   Draws a heightfield image with view-dependent GeoMipMapping level of detail.
+ * @brief   Draws a heightfield image with view-dependent GeoMipMapping level of detail,
+ *          the heights resident on the GPU.
  *
  * Input: a 2D vtkImageData (nx x ny x 1) whose active point scalars are heights, any
  * numeric type (vtkDEMReader's output plugs in directly, as does
  * vtkGeoMipMapTerrainReader's "Elevation"). NaN marks nodata: no triangle touches it.
+ * The surface is at (x, y, origin z + HeightScale * h), as vtkWarpScalar would put it.
  *
- * When the input changes (MTime), the mapper converts it to a gmm::Heightfield, builds the
- * engine (quadtree and error table) and one vtkPolyData over ALL samples with smooth
- * full-resolution normals, the input scalars (for LUT colouring) and, only while the
- * actor has a texture, texture coordinates 0..1 over the extent; its vertex buffers are
- * uploaded once. Every render it converts
- * the renderer's active camera and viewport to a gmm::View in the data's coordinates
- * (through the inverse of the actor's matrix), runs the engine with PixelError and draws
- * the selected triangles. Only the triangle index buffer is re-uploaded, and only when
- * the engine reports that the indices changed. Lighting, LUT colouring, textures, actor
- * transforms, parallel projection and the VBO shift/scale for large coordinates work as
- * with vtkOpenGLPolyDataMapper.
+ * Memory: each height is stored once on the GPU, in a 2D array texture (float, or 16-bit
+ * integers as they are for short / unsigned short input), split into layers when the DEM
+ * is larger than GL_MAX_TEXTURE_SIZE. There is no vertex buffer: the vertex shader makes
+ * each vertex from its sample index and the height texture. On the CPU the engine's
+ * quadtree and error tables (vtkGeoMipMapTerrain, shared with every other mapper and
+ * filter of the same image) share float heights with the input. Before the first upload
+ * the mapper estimates what the DEM needs and refuses a DEM that does not fit the
+ * MemoryLimit (default: the memory available now) with an error naming both; a driver
+ * that still runs out of memory is reported and the frame goes on without the terrain.
  *
- * Several renderers may share one mapper: the LOD follows the camera being rendered (the
- * indices are re-uploaded when renderers with different cameras alternate).
+ * Every render it converts the renderer's active camera, viewport and the actor's matrix
+ * to a gmm::View, runs the engine with PixelError and draws the selected triangles; only
+ * the triangle index buffer is re-uploaded, and only when the indices changed. The
+ * certified bound is exact under any invertible affine actor matrix (non-uniform scale
+ * and shear included) and HeightScale; culling follows the camera's exact projection
+ * (window centre and view shear included); the bound assumes no view shear.
  *
- * Limits: the error bound is exact for rotations, translations and uniform scale; with a
- * non-uniform actor scale it is approximate. Surface, wireframe and points
- * representations are supported; edge visibility and hardware picking of cells are not.
- * The camera's window centre / view shear are ignored.
+ * Shading does not depend on the level drawn: the fragment shader computes each
+ * fragment's normal from the full-resolution heights (central differences, interpolated
+ * on the full-resolution triangle under the fragment), and its scalar colour from the
+ * full-resolution samples of the colouring array (interpolated, then mapped through the
+ * lookup table: InterpolateScalarsBeforeMapping is implied). Colouring: point scalars
+ * (the heights, or another point array selected with SelectColorArray / ScalarMode),
+ * one component through the lookup table (linear or log scale, below/above-range and
+ * NaN colours as the table maps them), or unsigned char RGB(A) arrays as direct colours
+ * (ColorMode default). Cell scalars are not supported (the surface takes the actor's
+ * colour, with an error).
  *
- * @sa vtkGeoMipMapFilter (the same triangles as a vtkPolyData)
+ * Works as with vtkOpenGLPolyDataMapper: lighting, LUT colouring, a texture draped over
+ * the extent (texture coordinates 0..1 over the samples), actor transforms, parallel
+ * projection, clipping planes, surface / wireframe / points representations and surface
+ * with edges, several renderers and several render windows (the GPU data follow the
+ * window being rendered), vtkPropPicker and vtkWorldPointPicker. Large coordinates: vertex
+ * positions are computed relative to a sample near the camera whose position goes into
+ * the camera matrices in double, so a DEM at 6.4e6 m draws as at the origin.
+ *
+ * Picking: vtkCellPicker and vtkPointPicker intersect a mapper's input data set, here the
+ * flat image, and cannot see the terrain: use vtkGeoMipMapPicker (exact ray-terrain
+ * intersection, with image point and cell ids), vtkWorldPointPicker or vtkPropPicker.
+ * Hardware cell or point selection (vtkHardwareSelector) returns ids of the drawn LOD
+ * triangles, not of the image.
+ *
+ * @sa vtkGeoMipMapFilter (the same triangles as a vtkPolyData), vtkGeoMipMapPicker
  */
 #ifndef vtkGeoMipMapMapper_h
 #define vtkGeoMipMapMapper_h
 
 #include "geomipmapRenderingModule.h" // For export macro
-#include "vtkNew.h"                   // For vtkNew
 #include "vtkOpenGLPolyDataMapper.h"
 
 #include <memory> // For std::unique_ptr
 
 class vtkImageData;
-class vtkPolyData;
+class vtkOpenGLRenderWindow;
 
 class GEOMIPMAPRENDERING_EXPORT vtkGeoMipMapMapper : public vtkOpenGLPolyDataMapper
 {
@@ -64,38 +87,71 @@ public:
 
   ///@{
   /**
-   * Largest block side in quads (>= 2). Default 64. Changing it rebuilds the engine's
-   * quadtree and error table at the next render; the vertex buffers are kept.
+   * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default 64. A smaller
+   * value is refused with an error and the previous one kept. Changing it rebuilds the
+   * quadtree and error tables at the next render; the height texture is kept.
    */
   void SetBlockSize(int quads);
   vtkGetMacro(BlockSize, int);
+  ///@}
+
+  /**
+   * The smallest BlockSize accepted (gmm::kMinBlockQuads, 4): the one rule the mapper, the
+   * filter and the command-line tools apply.
+   */
+  static int GetMinimumBlockSize();
+
+  ///@{
+  /**
+   * Vertical exaggeration: the surface is at origin z + HeightScale * h. Finite and > 0,
+   * else refused with an error. Default 1. Culling, normals and the certified bound all
+   * see the scaled surface; changing it per frame rebuilds nothing (errors scale
+   * linearly), unlike an actor scale it keeps picking and GetHeightAt in data units.
+   */
+  void SetHeightScale(double scale);
+  vtkGetMacro(HeightScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Memory, in bytes, a DEM may take (GPU textures, plus the engine's tables and any
+   * height copy); 0 (default) means the memory available on this machine now. A DEM
+   * estimated to need more is refused before anything is allocated.
+   */
+  vtkSetMacro(MemoryLimit, vtkTypeInt64);
+  vtkGetMacro(MemoryLimit, vtkTypeInt64);
   ///@}
 
   ///@{
   /**
    * Statistics of the last rendered frame (the last renderer that drew this mapper).
    * LastUpdateTime is the LOD work (cull, select, tessellate) in seconds;
-   * MaximumScreenSpaceError is the engine's certified bound in pixels; IndicesReused is
-   * true when the frame's triangles equal the previous frame's. After a render that
-   * drew nothing because of an error (bad camera, no input) they are 0. When VTK culls the
-   * whole actor (its bounds outside the view) the mapper is not called at all, and they
-   * keep describing the last frame it drew.
+   * MaximumScreenSpaceError is the engine's certified bound in pixels and
+   * MaximumGeometricError in data units; IndicesReused is true when the frame's triangles
+   * equal the previous frame's. After a render that drew nothing because of an error (bad
+   * camera, no input, too big) they are 0. When VTK culls the whole actor (its bounds
+   * outside the view) the mapper is not called at all, and they keep describing the last
+   * frame it drew.
    */
   vtkIdType GetNumberOfRenderedTriangles() const;
   int GetNumberOfVisibleBlocks() const;
   int GetNumberOfCulledBlocks() const;
   double GetMaximumScreenSpaceError() const;
+  double GetMaximumGeometricError() const;
   bool GetIndicesReused() const;
   vtkGetMacro(LastUpdateTime, double);
   ///@}
 
   ///@{
   /**
-   * Instrumentation: how many times the vertex buffers (positions, normals, colours,
-   * texture coordinates) and the triangle index buffer were uploaded to OpenGL.
+   * Instrumentation: how many times the heights (and colouring arrays) were uploaded to
+   * textures, and the triangle index buffer to OpenGL; the time the last height upload and
+   * the last terrain build (tables) took, in seconds.
    */
-  vtkGetMacro(NumberOfVertexUploads, int);
+  vtkGetMacro(NumberOfHeightUploads, int);
   vtkGetMacro(NumberOfIndexUploads, int);
+  vtkGetMacro(LastHeightUploadTime, double);
+  vtkGetMacro(LastTerrainBuildTime, double);
   ///@}
 
   /**
@@ -105,7 +161,29 @@ public:
   vtkGetMacro(LastIndexUploadTime, double);
 
   /**
-   * Bounds of the valid (non-NaN) samples.
+   * Bytes held on the GPU: height, colour and lookup-table textures and the index buffer.
+   */
+  vtkTypeInt64 GetGPUMemoryBytes() const;
+
+  /**
+   * Height of the full-resolution surface at data coordinates (x, y): origin z +
+   * HeightScale * h, linear on the level-0 triangle under it, whatever the LOD draws; NaN
+   * outside the DEM or over nodata. Updates the input when needed.
+   */
+  double GetHeightAt(double x, double y);
+
+  /**
+   * Exact first intersection of the segment p1 -> p2 (data coordinates) with the
+   * full-resolution surface. Returns true and sets t (in [0, 1]), the point x, the unit
+   * normal, the image point id of the nearest vertex of the hit triangle and the image
+   * cell id under the hit; false when the segment misses. Used by vtkGeoMipMapPicker.
+   */
+  bool IntersectWithLine(const double p1[3], const double p2[3], double& t, double x[3],
+    double normal[3], vtkIdType& pointId, vtkIdType& cellId);
+
+  /**
+   * Bounds of the valid (non-NaN) samples: x, y of the rows and columns that hold one,
+   * z of the scaled surface. Uninitialised when there is none.
    */
   double* GetBounds() override;
   void GetBounds(double bounds[6]) override { this->Superclass::GetBounds(bounds); }
@@ -120,36 +198,45 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   void ComputeBounds() override;
 
-  // Rebuild the VBOs only for input, property, texture or colouring changes, not for
-  // PixelError / BlockSize (those change indices only).
+  // Rebuild the (tiny, proxy) vertex buffers only for property, texture or colouring
+  // changes, not for PixelError / BlockSize / HeightScale (those change indices only).
   bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
-  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
-  // Uploads the engine's triangles instead of the (cell-less) mesh's cells.
+  // Uploads the engine's triangles instead of the (cell-less) proxy's cells.
   void BuildIBO(vtkRenderer* ren, vtkActor* act, vtkPolyData* poly) override;
+  // Draws the triangles with glDrawElements (the proxy's one vertex is no range).
+  void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
+  // Terrain code in VTK's generated shaders (vtkGeoMipMapShaders.h).
+  void ReplaceShaderValues(
+    std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
+  bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  // Terrain uniforms, and clipping planes relative to the anchor sample.
+  void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  // Camera matrices with the anchor's translation folded in, in double.
+  void SetCameraShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
 
-  // Rebuilds heightfield, engine and mesh when the input image or block size changed.
-  bool UpdateMesh(vtkImageData* image);
-  // Adds texture coordinates (0..1 over the extent) to the mesh, or drops them.
-  void UpdateTextureCoordinates(bool wanted);
+  // Gets the shared terrain of the input image; false (with an error) when unusable.
+  bool UpdateTerrain(vtkImageData* image);
+  // Heights, colouring arrays and lookup table on the GPU of `win`; false on failure.
+  bool UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData* image, vtkActor* act);
   void UploadIndices(vtkActor* act);
-  // Marks the mapper modified for a change that needs new indices but no new VBOs.
+  // Frees the GPU data of the window they live in (its context made current).
+  void ReleaseWindowResources();
+  // Marks the mapper modified for a change that needs new indices but no new buffers.
   void ModifiedIndicesOnly();
 
   double PixelError = 1.0;
   int BlockSize = 64;
+  double HeightScale = 1.0;
+  vtkTypeInt64 MemoryLimit = 0;
   double LastUpdateTime = 0.0;
-  int NumberOfVertexUploads = 0;
+  int NumberOfHeightUploads = 0;
   int NumberOfIndexUploads = 0;
   double LastIndexUploadTime = 0.0;
+  double LastHeightUploadTime = 0.0;
+  double LastTerrainBuildTime = 0.0;
   bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
-
-  vtkNew<vtkPolyData> Mesh;
-  vtkMTimeType MeshInputTime = 0;    // input image MTime the engine was built from
-  vtkMTimeType MeshVerticesTime = 0; // input image MTime the mesh (VBO source) was built from
-  int MeshBlockSize = 0;
   vtkMTimeType IndicesOnlyMTime = 0;
   bool IndicesDirty = true;
-  double ValidBounds[6];
 
 private:
   vtkGeoMipMapMapper(const vtkGeoMipMapMapper&) = delete;

@@ -134,7 +134,7 @@ def main():
             last_time, last_frame = now, frame
             print(f"frame {frame:6d}: RSS {rss / 1024:8.1f} MiB  peak {hwm / 1024:8.1f} MiB  "
                   f"index uploads {mapper.GetNumberOfIndexUploads():6d}  "
-                  f"vertex uploads {mapper.GetNumberOfVertexUploads()}  "
+                  f"height uploads {mapper.GetNumberOfHeightUploads()}  "
                   f"{rate:6.1f} frames/s", flush=True)
     if triangles == 0:
         print("soak: FAIL: nothing was rendered", file=sys.stderr)

@@ -154,6 +154,40 @@ inline vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* win)
   return out;
 }
 
+// The window's depth buffer (floats in [0, 1], 1 = background).
+inline vtkSmartPointer<vtkImageData> GrabDepth(vtkRenderWindow* win)
+{
+  vtkNew<vtkWindowToImageFilter> w2i;
+  w2i->SetInput(win);
+  w2i->SetInputBufferTypeToZBuffer();
+  w2i->ReadFrontBufferOff();
+  w2i->Update();
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(w2i->GetOutput());
+  return out;
+}
+
+// Number of pixels whose depths differ by more than `tol`.
+inline int CountDifferentDepths(vtkImageData* a, vtkImageData* b, double tol, double* maxDiff = nullptr)
+{
+  const vtkIdType n = a->GetNumberOfPoints();
+  vtkDataArray* da = a->GetPointData()->GetScalars();
+  vtkDataArray* db = b->GetPointData()->GetScalars();
+  int count = 0;
+  double worst = 0.0;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    const double d = std::abs(da->GetTuple1(k) - db->GetTuple1(k));
+    worst = std::max(worst, d);
+    count += d > tol ? 1 : 0;
+  }
+  if (maxDiff)
+  {
+    *maxDiff = worst;
+  }
+  return count;
+}
+
 inline unsigned char* Pixel(vtkImageData* img, int x, int y)
 {
   return static_cast<unsigned char*>(img->GetScalarPointer(x, y, 0));

@@ -1,8 +1,9 @@
-// Buffer traffic of vtkGeoMipMapMapper: the vertex buffers are uploaded once per input
-// change (never for a camera move or a new PixelError), and the triangle index buffer is
-// uploaded only when the engine's indices change (never for a static camera). Also checks
-// that two renderers with different cameras sharing the mapper each get their own LOD, and
-// that texture coordinates are built (one vertex upload) only while the actor is textured.
+// Buffer traffic of vtkGeoMipMapMapper: the heights go to the GPU once per change of the
+// height array (never for a camera move, a new PixelError, a texture or a colouring
+// change), and the triangle index buffer is uploaded only when the engine's indices change
+// (never for a static camera). Also checks that two renderers with different cameras
+// sharing the mapper each get their own LOD, and that a texture shows and goes away
+// without any height upload (texture coordinates come from the shader).
 #include "GeoMipMapTestUtilities.h"
 #include "vtkGeoMipMapMapper.h"
 
@@ -42,8 +43,8 @@ int TestGeoMipMapUploads(int, char*[])
   ren->ResetCameraClippingRange();
 
   win->Render();
-  const int v0 = mapper->GetNumberOfVertexUploads(), i0 = mapper->GetNumberOfIndexUploads();
-  std::cout << "first frame: vertex uploads " << v0 << ", index uploads " << i0
+  const int v0 = mapper->GetNumberOfHeightUploads(), i0 = mapper->GetNumberOfIndexUploads();
+  std::cout << "first frame: height uploads " << v0 << ", index uploads " << i0
             << ", triangles " << mapper->GetNumberOfRenderedTriangles() << "\n";
   CHECK(v0 == 1);
   CHECK(i0 >= 1);
@@ -55,7 +56,7 @@ int TestGeoMipMapUploads(int, char*[])
     win->Render();
   }
   CHECK(mapper->GetIndicesReused());
-  CHECK(mapper->GetNumberOfVertexUploads() == v0);
+  CHECK(mapper->GetNumberOfHeightUploads() == v0);
   CHECK(mapper->GetNumberOfIndexUploads() == i0);
 
   // Camera moves: indices only, uploaded exactly when the engine made new ones.
@@ -74,9 +75,9 @@ int TestGeoMipMapUploads(int, char*[])
   }
   CHECK(changed > 0);
   const int i1 = mapper->GetNumberOfIndexUploads();
-  std::cout << "after 5 camera moves: vertex uploads " << mapper->GetNumberOfVertexUploads()
+  std::cout << "after 5 camera moves: height uploads " << mapper->GetNumberOfHeightUploads()
             << ", index uploads " << i1 << "\n";
-  CHECK(mapper->GetNumberOfVertexUploads() == v0);
+  CHECK(mapper->GetNumberOfHeightUploads() == v0);
   CHECK(i1 > i0);
 
   // A new tau changes the indices, not the vertices.
@@ -84,24 +85,26 @@ int TestGeoMipMapUploads(int, char*[])
   mapper->SetPixelError(8.0);
   win->Render();
   std::cout << "tau 8: triangles " << mapper->GetNumberOfRenderedTriangles() << " (was "
-            << before << "), vertex uploads " << mapper->GetNumberOfVertexUploads() << "\n";
+            << before << "), height uploads " << mapper->GetNumberOfHeightUploads() << "\n";
   CHECK(mapper->GetNumberOfRenderedTriangles() < before);
-  CHECK(mapper->GetNumberOfVertexUploads() == v0);
+  CHECK(mapper->GetNumberOfHeightUploads() == v0);
   CHECK(mapper->GetNumberOfIndexUploads() == i1 + 1);
   mapper->SetPixelError(-1.0); // rejected with an error, previous value kept
   CHECK(mapper->GetPixelError() == 8.0);
 
-  // New input data: the vertices are uploaded again.
+  // New heights: uploaded again; the image alone modified (no new heights): nothing.
   image->Modified();
   win->Render();
-  CHECK(mapper->GetNumberOfVertexUploads() == v0 + 1);
-
-  // Texture coordinates only while textured: adding a texture costs one vertex upload and
-  // the texture shows; removing it costs one more, and then nothing is re-uploaded.
-  mapper->ScalarVisibilityOff(); // a colouring change: vertex buffers rebuilt once
+  CHECK(mapper->GetNumberOfHeightUploads() == v0);
+  image->GetPointData()->GetScalars()->Modified();
   win->Render();
-  const int v1 = mapper->GetNumberOfVertexUploads();
-  CHECK(v1 == v0 + 2);
+  CHECK(mapper->GetNumberOfHeightUploads() == v0 + 1);
+
+  // Colouring and textures change shaders, never the heights.
+  mapper->ScalarVisibilityOff();
+  win->Render();
+  const int v1 = mapper->GetNumberOfHeightUploads();
+  CHECK(v1 == v0 + 1);
   // Pixels clearly green (the texture's colour): none on the untextured grey surface.
   auto greenPixels = [&win]() {
     auto img = gmmtest::Grab(win);
@@ -123,19 +126,17 @@ int TestGeoMipMapUploads(int, char*[])
   actor->SetTexture(texture);
   win->Render();
   const int greenTextured = greenPixels();
-  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 1);
-  win->Render();
-  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 1);
+  CHECK(mapper->GetNumberOfHeightUploads() == v1);
   actor->SetTexture(nullptr);
   win->Render();
   win->Render();
   const int greenAfter = greenPixels();
   std::cout << "green pixels: untextured " << greenBefore << ", textured " << greenTextured
-            << ", texture removed " << greenAfter << "; vertex uploads "
-            << mapper->GetNumberOfVertexUploads() - v1 << " for adding and removing it\n";
+            << ", texture removed " << greenAfter << "; height uploads "
+            << mapper->GetNumberOfHeightUploads() - v1 << " for adding and removing it\n";
   CHECK(greenBefore == 0 && greenAfter == 0);
   CHECK(greenTextured > 400 * 300 / 10);
-  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 2);
+  CHECK(mapper->GetNumberOfHeightUploads() == v1);
   mapper->ScalarVisibilityOn();
 
   // Two renderers, different cameras, one mapper: the LOD follows the camera drawn.
@@ -169,6 +170,8 @@ int TestGeoMipMapUploads(int, char*[])
   CHECK(farTris < nearTris);
   CHECK(mapper->GetNumberOfIndexUploads() - i2 == 2);
   CHECK(mapper->GetNumberOfRenderedTriangles() == farTris);
-  CHECK(mapper->GetNumberOfVertexUploads() == v1 + 3);
+  CHECK(mapper->GetNumberOfHeightUploads() == v1);
+  std::cout << "GPU memory: " << mapper->GetGPUMemoryBytes() << " bytes for 257 x 257 samples\n";
+  CHECK(mapper->GetGPUMemoryBytes() >= 257 * 257 * 4);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -2,7 +2,7 @@
 
 Checks the mapper's frame statistics behave sensibly: triangles > 0 every frame, the
 certified screen error <= tau every frame, indices reused (and no index upload) while the
-camera is static, vertex buffers uploaded once for the whole flight, and fewer visible
+camera is static, heights uploaded once for the whole flight, and fewer visible
 blocks when looking down at a small region than over the whole terrain.
 Run under an X display (xvfb-run). Exit 0 = pass, 1 = fail.
 """
@@ -62,8 +62,8 @@ for f in range(50):
 print(f"flight: triangles min {min(tris)} max {max(tris)}, "
       f"last LOD update {mapper.GetLastUpdateTime() * 1e3:.2f} ms")
 check(len(set(tris)) > 1, "triangle count never changed along the flight")
-check(mapper.GetNumberOfVertexUploads() == 1,
-      f"vertex buffers uploaded {mapper.GetNumberOfVertexUploads()} times, expected once")
+check(mapper.GetNumberOfHeightUploads() == 1,
+      f"heights uploaded {mapper.GetNumberOfHeightUploads()} times, expected once")
 
 # Static camera: indices reused, nothing uploaded.
 uploads = mapper.GetNumberOfIndexUploads()

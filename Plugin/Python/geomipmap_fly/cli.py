@@ -38,6 +38,13 @@ exit status: 0 ok, 2 bad input (one line on stderr), 1 internal error.
 """
 
 
+def min_block_size():
+    """The engine's one minimum block size (gmm::kMinBlockQuads), as the mapper states it."""
+    from geomipmap import vtkGeoMipMapMapper
+
+    return vtkGeoMipMapMapper.GetMinimumBlockSize()
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # argparse's default prints usage over several lines
         raise FlyError(message)
@@ -109,7 +116,8 @@ def build_parser():
     g.add_argument("--tau", type=_positive(float, 0, strict=False), default=1.0,
                    help="pixel error bound (default 1)")
     g.add_argument("--block-size", type=int, default=64,
-                   help="block size in quads, a power of two 2..1024 (default 64)")
+                   help=f"block size in quads, a power of two {min_block_size()}..1024 "
+                   "(default 64)")
     g.add_argument("--size", type=_size, default=(1280, 720), help="WxH (default 1280x720)")
     g.add_argument("--color", type=_colour, default="elevation",
                    help="'elevation' (default) or 'texture:FILE.png' (draped over the extent)")
@@ -127,9 +135,9 @@ def build_parser():
 
 def check(args):
     """Cross-option checks argparse cannot express."""
-    b = args.block_size
-    if b < 2 or b > 1024 or b & (b - 1):
-        raise FlyError(f"--block-size must be a power of two in 2..1024, got {b}")
+    b, least = args.block_size, min_block_size()
+    if b < least or b > 1024 or b & (b - 1):
+        raise FlyError(f"--block-size must be a power of two in {least}..1024, got {b}")
     if not -89.0 <= args.pitch <= 89.0:
         raise FlyError(f"--pitch must be in -89..89 degrees, got {args.pitch:g}")
     if not 1.0 <= args.view_angle <= 170.0:

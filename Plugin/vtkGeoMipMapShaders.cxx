@@ -1,0 +1,234 @@
+// VTK-HeaderTest-Exclude: vtkGeoMipMapShaders.cxx
+#include "vtkGeoMipMapShaders.h"
+
+#include "vtkShaderProgram.h"
+
+namespace
+{
+
+const char* SamplerFor(vtkGeoMipMapShaders::Options::Heights h)
+{
+  switch (h)
+  {
+    case vtkGeoMipMapShaders::Options::Int16Heights:
+      return "isampler2DArray";
+    case vtkGeoMipMapShaders::Options::UInt16Heights:
+      return "usampler2DArray";
+    default:
+      return "sampler2DArray";
+  }
+}
+
+// Sample (i, j) of a tiled array texture (vtkGeoMipMapTextures.h): layer, then texel.
+std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
+{
+  std::string s = std::string("uniform highp ") + SamplerFor(o.HeightFormat) +
+    " gmmHeights;\n"
+    "uniform ivec2 gmmGridSize;   // samples nx, ny\n"
+    "uniform ivec2 gmmTileSize;   // texels per layer\n"
+    "uniform int gmmTilesX;       // layers per row of tiles\n"
+    "uniform vec2 gmmSpacing;     // dx, dy\n"
+    "uniform float gmmHeightScale; // vertical exaggeration\n"
+    "ivec3 gmmTexel(ivec2 ij)\n"
+    "{\n"
+    "  ivec2 tile = ij / gmmTileSize;\n"
+    "  return ivec3(ij - tile * gmmTileSize, tile.y * gmmTilesX + tile.x);\n"
+    "}\n"
+    "float gmmHeight(ivec2 ij) { return float(texelFetch(gmmHeights, gmmTexel(ij), 0).r); }\n";
+  return s;
+}
+
+// The fragment's level-0 triangle and barycentric weights (Tessellate.h's quad split).
+const char* const kTriangle =
+  "in vec2 gmmGridVSOutput;\n"
+  "void gmmTriangle(vec2 g, out ivec2 v0, out ivec2 v1, out ivec2 v2, out vec3 w)\n"
+  "{\n"
+  "  vec2 gc = clamp(g, vec2(0.0), vec2(gmmGridSize - 1));\n"
+  "  ivec2 c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
+  "  vec2 f = gc - vec2(c);\n"
+  "  v0 = c;\n"
+  "  v2 = c + ivec2(1, 1);\n"
+  "  if (f.x >= f.y) { v1 = c + ivec2(1, 0); w = vec3(1.0 - f.x, f.x - f.y, f.y); }\n"
+  "  else { v1 = c + ivec2(0, 1); w = vec3(1.0 - f.y, f.y - f.x, f.x); }\n"
+  "}\n"
+  "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n";
+
+// Central differences as vtkGeoMipMapConversion::SampleNormal computes them.
+const char* const kNormal =
+  "float gmmSlope(ivec2 c, ivec2 d, float step, float hc)\n"
+  "{\n"
+  "  ivec2 a = c - d, b = c + d;\n"
+  "  bool hasA = a.x >= 0 && a.y >= 0;\n"
+  "  bool hasB = b.x < gmmGridSize.x && b.y < gmmGridSize.y;\n"
+  "  float ha = hasA ? gmmHeight(a) : 0.0, hb = hasB ? gmmHeight(b) : 0.0;\n"
+  "  hasA = hasA && gmmValid(ha);\n"
+  "  hasB = hasB && gmmValid(hb);\n"
+  "  if (hasA && hasB) { return (hb - ha) / (2.0 * step); }\n"
+  "  if (hasB && gmmValid(hc)) { return (hb - hc) / step; }\n"
+  "  if (hasA && gmmValid(hc)) { return (hc - ha) / step; }\n"
+  "  return 0.0;\n"
+  "}\n"
+  "vec3 gmmSampleNormal(ivec2 c)\n"
+  "{\n"
+  "  float hc = gmmHeight(c);\n"
+  "  float gx = gmmHeightScale * gmmSlope(c, ivec2(1, 0), gmmSpacing.x, hc);\n"
+  "  float gy = gmmHeightScale * gmmSlope(c, ivec2(0, 1), gmmSpacing.y, hc);\n"
+  "  return normalize(vec3(-gx, -gy, 1.0));\n"
+  "}\n"
+  "vec3 gmmNormalMC(vec2 g)\n"
+  "{\n"
+  "  ivec2 v0, v1, v2; vec3 w;\n"
+  "  gmmTriangle(g, v0, v1, v2, w);\n"
+  "  return w.x * gmmSampleNormal(v0) + w.y * gmmSampleNormal(v1) + w.z * gmmSampleNormal(v2);\n"
+  "}\n";
+
+// Lookup-table colours: texel 0 below range, 1..n the bins, n + 1 above, n + 2 NaN.
+const char* const kColorTable =
+  "uniform sampler2D gmmColorTable;\n"
+  "uniform vec4 gmmColorMap; // range low, 1 / range width, log scale (0/1), bins\n"
+  "vec4 gmmMapScalar(float s)\n"
+  "{\n"
+  "  int n = int(gmmColorMap.w);\n"
+  "  int k = n + 2;\n"
+  "  if (gmmValid(s))\n"
+  "  {\n"
+  "    float v = s;\n"
+  "    if (gmmColorMap.z > 0.5) { v = s > 0.0 ? log(s) / log(10.0) : -1.0e38; }\n"
+  "    float t = (v - gmmColorMap.x) * gmmColorMap.y;\n"
+  "    k = t < 0.0 ? 0 : (t > 1.0 ? n + 1 : 1 + min(int(t * float(n)), n - 1));\n"
+  "  }\n"
+  "  return texelFetch(gmmColorTable, ivec2(k, 0), 0);\n"
+  "}\n";
+
+std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
+{
+  using O = vtkGeoMipMapShaders::Options;
+  switch (o.Color)
+  {
+    case O::MapHeights:
+      return std::string(kColorTable) +
+        "vec4 gmmColor(vec2 g)\n"
+        "{\n"
+        "  ivec2 v0, v1, v2; vec3 w;\n"
+        "  gmmTriangle(g, v0, v1, v2, w);\n"
+        "  return gmmMapScalar(w.x * gmmHeight(v0) + w.y * gmmHeight(v1) + w.z * gmmHeight(v2));\n"
+        "}\n";
+    case O::MapScalars:
+      return std::string(kColorTable) +
+        "uniform highp sampler2DArray gmmScalars;\n"
+        "float gmmScalar(ivec2 ij) { return texelFetch(gmmScalars, gmmTexel(ij), 0).r; }\n"
+        "vec4 gmmColor(vec2 g)\n"
+        "{\n"
+        "  ivec2 v0, v1, v2; vec3 w;\n"
+        "  gmmTriangle(g, v0, v1, v2, w);\n"
+        "  return gmmMapScalar(w.x * gmmScalar(v0) + w.y * gmmScalar(v1) + w.z * gmmScalar(v2));\n"
+        "}\n";
+    case O::DirectColors:
+      return "uniform highp sampler2DArray gmmColors;\n"
+             "vec4 gmmColor(vec2 g)\n"
+             "{\n"
+             "  ivec2 v0, v1, v2; vec3 w;\n"
+             "  gmmTriangle(g, v0, v1, v2, w);\n"
+             "  return w.x * texelFetch(gmmColors, gmmTexel(v0), 0) +\n"
+             "    w.y * texelFetch(gmmColors, gmmTexel(v1), 0) +\n"
+             "    w.z * texelFetch(gmmColors, gmmTexel(v2), 0);\n"
+             "}\n";
+    default:
+      return std::string();
+  }
+}
+
+} // namespace
+
+namespace vtkGeoMipMapShaders
+{
+
+std::string Options::Key() const
+{
+  return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
+    (this->TextureCoordinates ? "t" : "-");
+}
+
+void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
+{
+  // VTK replaces these tags with its own code and drops them; a marker next to each keeps a
+  // place for ours (declarations before main, colour after VTK's colour code).
+  for (auto type : { vtkShader::Vertex, vtkShader::Fragment })
+  {
+    std::string src = shaders[type]->GetSource();
+    if (src.empty())
+    {
+      continue;
+    }
+    vtkShaderProgram::Substitute(
+      src, "//VTK::CustomUniforms::Dec", "//GMM::Dec\n//VTK::CustomUniforms::Dec");
+    if (type == vtkShader::Fragment)
+    {
+      vtkShaderProgram::Substitute(src, "//VTK::Color::Impl", "//VTK::Color::Impl\n//GMM::Color::Impl");
+    }
+    shaders[type]->SetSource(src);
+  }
+}
+
+void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Options& o)
+{
+  std::string vs = shaders[vtkShader::Vertex]->GetSource();
+  std::string fs = shaders[vtkShader::Fragment]->GetSource();
+  std::string gs = shaders[vtkShader::Geometry]->GetSource();
+
+  // Vertex shader: the attributes VTK declared become values computed from gl_VertexID.
+  vtkShaderProgram::Substitute(vs, "in vec4 vertexMC;", "vec4 vertexMC;");
+  vtkShaderProgram::Substitute(vs, "in vec3 normalMC;", "vec3 normalMC = vec3(0.0, 0.0, 1.0);");
+  vtkShaderProgram::Substitute(vs, "in vec2 tcoord;", "vec2 tcoord;");
+  vtkShaderProgram::Substitute(vs, "//GMM::Dec",
+    FetchFunctions(o) +
+      "uniform ivec2 gmmAnchor;      // sample at the model-coordinate origin\n"
+      "uniform float gmmHeightRef;   // stored height at the model-coordinate origin\n"
+      "out vec2 gmmGridVSOutput;\n");
+  std::string begin = "  uint gmmId = uint(gl_VertexID);\n"
+                      "  ivec2 gmmIJ = ivec2(int(gmmId % uint(gmmGridSize.x)), "
+                      "int(gmmId / uint(gmmGridSize.x)));\n"
+                      "  vertexMC = vec4(vec2(gmmIJ - gmmAnchor) * gmmSpacing,\n"
+                      "    (gmmHeight(gmmIJ) - gmmHeightRef) * gmmHeightScale, 1.0);\n"
+                      "  gmmGridVSOutput = vec2(gmmIJ);\n";
+  if (o.TextureCoordinates)
+  {
+    begin += "  tcoord = vec2(gmmIJ) / vec2(max(gmmGridSize - 1, ivec2(1)));\n";
+  }
+  vtkShaderProgram::Substitute(vs, "//VTK::CustomBegin::Impl", begin + "//VTK::CustomBegin::Impl");
+
+  // Geometry shader (wide lines, edges): pass the grid position through with each vertex
+  // (VTK's geometry templates emit input vertex i).
+  if (!gs.empty())
+  {
+    vtkShaderProgram::Substitute(
+      gs, "void main()", "in vec2 gmmGridVSOutput[];\nout vec2 gmmGridGSOutput;\nvoid main()", false);
+    vtkShaderProgram::Substitute(gs, "EmitVertex();", "gmmGridGSOutput = gmmGridVSOutput[i];\n    EmitVertex();");
+  }
+
+  // Fragment shader: full-resolution normal and colour at the fragment's grid position.
+  vtkShaderProgram::Substitute(
+    fs, "//GMM::Dec", FetchFunctions(o) + kTriangle + kNormal + ColorFunctions(o));
+  std::string color;
+  if (o.Color != Options::PropertyColor)
+  {
+    color = "  vec4 gmmC = gmmColor(gmmGridVSOutput);\n"
+            "  ambientColor = ambientIntensity * gmmC.rgb;\n"
+            "  diffuseColor = diffuseIntensity * gmmC.rgb;\n"
+            "  opacity = opacityUniform * gmmC.a;\n";
+  }
+  vtkShaderProgram::Substitute(fs, "//GMM::Color::Impl", color);
+  // Lit: VTK declared and normalised an interpolated normalVCVSOutput; replace its value.
+  if (fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos)
+  {
+    vtkShaderProgram::Substitute(fs, "//VTK::Normal::Impl",
+      "  normalVCVSOutput = normalize(normalMatrix * gmmNormalMC(gmmGridVSOutput));\n"
+      "  if (gl_FrontFacing == false) { normalVCVSOutput = -normalVCVSOutput; }\n"
+      "//VTK::Normal::Impl");
+  }
+  shaders[vtkShader::Vertex]->SetSource(vs);
+  shaders[vtkShader::Fragment]->SetSource(fs);
+  shaders[vtkShader::Geometry]->SetSource(gs);
+}
+
+} // namespace vtkGeoMipMapShaders

@@ -1,0 +1,63 @@
+/**
+ * @file   vtkGeoMipMapShaders.h
+ * @brief  What vtkGeoMipMapMapper changes in vtkOpenGLPolyDataMapper's shaders.
+ *
+ * VTK generates the shaders (lighting, textures, clipping, picking, edges, render passes);
+ * these functions make them read the terrain from textures instead of vertex buffers:
+ * - vertex shader: vertexMC is computed from gl_VertexID (sample j * nx + i) and the height
+ *   texture, relative to an anchor sample near the camera (the mapper's camera matrices
+ *   carry the anchor's position, in double), so large coordinates keep their precision;
+ *   the grid position (i, j) goes to the fragment shader; texture coordinates are
+ *   (i / (nx - 1), j / (ny - 1)).
+ * - fragment shader: the normal (when lit) and the scalar colour (when coloured) at the
+ *   fragment's grid position come from the full-resolution samples, interpolated on the
+ *   level-0 triangle under the fragment as the full-resolution mesh would interpolate its
+ *   vertex values, so shading does not depend on the level drawn.
+ * Not wrapped, not installed: private to geomipmap::Rendering.
+ */
+#ifndef vtkGeoMipMapShaders_h
+#define vtkGeoMipMapShaders_h
+
+#include "vtkShader.h" // For vtkShader::Type
+
+#include <map>    // For std::map
+#include <string> // For std::string
+
+namespace vtkGeoMipMapShaders
+{
+// How heights are stored and what colours the surface.
+struct Options
+{
+  enum Heights
+  {
+    FloatHeights,
+    Int16Heights,
+    UInt16Heights
+  } HeightFormat = FloatHeights;
+  enum Coloring
+  {
+    PropertyColor, // the actor's colour
+    MapHeights,    // the height texture through the lookup table
+    MapScalars,    // a separate float scalar texture through the lookup table
+    DirectColors   // an RGBA texture
+  } Color = PropertyColor;
+  bool TextureCoordinates = false; // the actor is textured
+
+  /** A short string that differs when the shader source must differ. */
+  std::string Key() const;
+};
+
+/**
+ * Before VTK's own replacements: leaves markers next to the tags VTK consumes.
+ */
+void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders);
+
+/**
+ * After VTK's replacements: the terrain code. VTK must have been given a proxy with
+ * normals (and texture coordinates when textured) so that it declared them.
+ */
+void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Options& options);
+}
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGeoMipMapShaders.h

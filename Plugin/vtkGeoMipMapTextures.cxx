@@ -1,0 +1,321 @@
+// VTK-HeaderTest-Exclude: vtkGeoMipMapTextures.cxx
+#include "vtkGeoMipMapTextures.h"
+
+#include "vtkDataArray.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkScalarsToColors.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "Heightfield.h" // gmm::kMaxHeight
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+namespace
+{
+
+struct GLFormat
+{
+  GLenum internal, format, type;
+};
+
+GLFormat GLFormatOf(vtkGeoMipMapSampleTexture::Format f)
+{
+  switch (f)
+  {
+    case vtkGeoMipMapSampleTexture::Int16:
+      return { GL_R16I, GL_RED_INTEGER, GL_SHORT };
+    case vtkGeoMipMapSampleTexture::UInt16:
+      return { GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT };
+    case vtkGeoMipMapSampleTexture::RGBA8:
+      return { GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE };
+    default:
+      return { GL_R32F, GL_RED, GL_FLOAT };
+  }
+}
+
+// True when the array's memory is already laid out as the texels (no conversion).
+bool UploadsDirectly(vtkDataArray* a, vtkGeoMipMapSampleTexture::Format f)
+{
+  const int comps = a->GetNumberOfComponents();
+  switch (f)
+  {
+    case vtkGeoMipMapSampleTexture::Float32:
+      return a->GetDataType() == VTK_FLOAT && comps == 1;
+    case vtkGeoMipMapSampleTexture::Int16:
+    case vtkGeoMipMapSampleTexture::UInt16:
+      return comps == 1; // FormatFor only picks these for 1-component 16-bit arrays
+    default:
+      return a->GetDataType() == VTK_UNSIGNED_CHAR && comps == 4;
+  }
+}
+
+// One tile of the array converted to texels (float: component 0, values beyond the
+// engine's height range become NaN as in the heightfield; RGBA8: grey, grey + alpha, RGB
+// or RGBA unsigned char).
+void ConvertTile(vtkDataArray* a, vtkGeoMipMapSampleTexture::Format f, int nx, int i0, int j0,
+  int w, int h, std::vector<unsigned char>& out)
+{
+  const int comps = a->GetNumberOfComponents();
+  if (f == vtkGeoMipMapSampleTexture::RGBA8)
+  {
+    out.resize(static_cast<size_t>(w) * h * 4);
+    for (int j = 0; j < h; ++j)
+    {
+      for (int i = 0; i < w; ++i)
+      {
+        const vtkIdType k = static_cast<vtkIdType>(j0 + j) * nx + i0 + i;
+        unsigned char* t = &out[(static_cast<size_t>(j) * w + i) * 4];
+        double c[4] = { 0, 0, 0, 255 };
+        for (int m = 0; m < comps && m < 4; ++m)
+        {
+          c[m] = a->GetComponent(k, m);
+        }
+        if (comps <= 2) // grey (+ alpha)
+        {
+          c[3] = comps == 2 ? c[1] : 255;
+          c[1] = c[2] = c[0];
+        }
+        for (int m = 0; m < 4; ++m)
+        {
+          t[m] = static_cast<unsigned char>(std::min(255.0, std::max(0.0, c[m])));
+        }
+      }
+    }
+    return;
+  }
+  out.resize(static_cast<size_t>(w) * h * sizeof(float));
+  float* t = reinterpret_cast<float*>(out.data());
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const double v = a->GetComponent(static_cast<vtkIdType>(j0 + j) * nx + i0 + i, 0);
+      t[static_cast<size_t>(j) * w + i] = std::abs(v) <= gmm::kMaxHeight
+        ? static_cast<float>(v)
+        : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkGeoMipMapTileLayout::Plan(int nx_, int ny_, int maxSize, int maxLayers)
+{
+  this->nx = nx_;
+  this->ny = ny_;
+  this->tilesX = (nx_ + maxSize - 1) / maxSize;
+  this->tilesY = (ny_ + maxSize - 1) / maxSize;
+  this->tileW = (nx_ + this->tilesX - 1) / this->tilesX;
+  this->tileH = (ny_ + this->tilesY - 1) / this->tilesY;
+  if (this->Layers() > maxLayers)
+  {
+    std::ostringstream why;
+    why << nx_ << " x " << ny_ << " samples need " << this->Layers() << " texture layers of "
+        << this->tileW << " x " << this->tileH << "; this OpenGL allows " << maxLayers;
+    return why.str();
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapSampleTexture::Format vtkGeoMipMapSampleTexture::FormatFor(vtkDataArray* a, bool asColors)
+{
+  if (asColors)
+  {
+    return RGBA8;
+  }
+  if (a->GetNumberOfComponents() == 1 && a->GetDataType() == VTK_SHORT)
+  {
+    return Int16;
+  }
+  if (a->GetNumberOfComponents() == 1 && a->GetDataType() == VTK_UNSIGNED_SHORT)
+  {
+    return UInt16;
+  }
+  return Float32;
+}
+
+size_t vtkGeoMipMapSampleTexture::BytesPerTexel(Format f)
+{
+  return f == Int16 || f == UInt16 ? 2 : 4;
+}
+
+vtkGeoMipMapSampleTexture::vtkGeoMipMapSampleTexture() = default;
+vtkGeoMipMapSampleTexture::~vtkGeoMipMapSampleTexture() = default;
+
+bool vtkGeoMipMapSampleTexture::IsCurrent(vtkDataArray* array, Format format) const
+{
+  return this->Handle != 0 && this->Source == array && this->SourceTime == array->GetMTime() &&
+    this->Stored == format;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDataArray* array,
+  Format format, const vtkGeoMipMapTileLayout& layout)
+{
+  this->Release(win);
+  const GLFormat gl = GLFormatOf(format);
+  const size_t texel = BytesPerTexel(format);
+  while (glGetError() != GL_NO_ERROR)
+  {
+    // Errors of earlier calls are not ours to report.
+  }
+  glGenTextures(1, &this->Handle);
+  this->Unit->SetContext(win);
+  this->Unit->AssignToExistingTexture(this->Handle, GL_TEXTURE_2D_ARRAY);
+  this->Unit->Activate();
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, gl.internal, layout.tileW, layout.tileH, layout.Layers(), 0,
+    gl.format, gl.type, nullptr);
+  GLenum err = glGetError();
+  if (err == GL_NO_ERROR)
+  {
+    const bool direct = UploadsDirectly(array, format);
+    const unsigned char* base = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+    std::vector<unsigned char> scratch;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int ty = 0; ty < layout.tilesY && err == GL_NO_ERROR; ++ty)
+    {
+      for (int tx = 0; tx < layout.tilesX && err == GL_NO_ERROR; ++tx)
+      {
+        const int i0 = tx * layout.tileW, j0 = ty * layout.tileH;
+        const int w = std::min(layout.tileW, layout.nx - i0), h = std::min(layout.tileH, layout.ny - j0);
+        const void* pixels = nullptr;
+        if (direct)
+        {
+          // Straight from the input: rows of nx samples, starting at the tile's corner.
+          glPixelStorei(GL_UNPACK_ROW_LENGTH, layout.nx);
+          pixels = base + (static_cast<size_t>(j0) * layout.nx + i0) * texel;
+        }
+        else
+        {
+          glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+          ConvertTile(array, format, layout.nx, i0, j0, w, h, scratch);
+          pixels = scratch.data();
+        }
+        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, ty * layout.tilesX + tx, w, h, 1, gl.format,
+          gl.type, pixels);
+        err = glGetError();
+      }
+    }
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  }
+  this->Unit->Deactivate();
+  if (err != GL_NO_ERROR)
+  {
+    std::ostringstream why;
+    why << "OpenGL could not store " << layout.nx << " x " << layout.ny << " samples ("
+        << (layout.Layers() * static_cast<double>(layout.tileW) * layout.tileH * texel / 1048576.0)
+        << " MiB in " << layout.Layers() << " layers of " << layout.tileW << " x " << layout.tileH
+        << "): " << (err == GL_OUT_OF_MEMORY ? "out of memory" : "error ") << std::hex
+        << (err == GL_OUT_OF_MEMORY ? 0u : err);
+    this->Release(win);
+    return why.str();
+  }
+  this->Stored = format;
+  this->Bytes = static_cast<size_t>(layout.Layers()) * layout.tileW * layout.tileH * texel;
+  this->Source = array;
+  this->SourceTime = array->GetMTime();
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+int vtkGeoMipMapSampleTexture::Activate()
+{
+  this->Unit->Activate();
+  return this->Unit->GetTextureUnit();
+}
+
+void vtkGeoMipMapSampleTexture::Deactivate()
+{
+  this->Unit->Deactivate();
+}
+
+void vtkGeoMipMapSampleTexture::Release(vtkWindow* win)
+{
+  if (this->Handle)
+  {
+    this->Unit->ReleaseGraphicsResources(win); // frees its unit; does not own the handle
+    glDeleteTextures(1, &this->Handle);
+    this->Handle = 0;
+  }
+  this->Bytes = 0;
+  this->Source = nullptr;
+  this->SourceTime = 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkGeoMipMapColorTable::EntriesFor(vtkScalarsToColors* lut)
+{
+  const vtkIdType n = lut->GetNumberOfAvailableColors();
+  return static_cast<int>(std::max<vtkIdType>(256, std::min<vtkIdType>(4096, n)));
+}
+
+vtkGeoMipMapColorTable::vtkGeoMipMapColorTable() = default;
+vtkGeoMipMapColorTable::~vtkGeoMipMapColorTable() = default;
+
+void vtkGeoMipMapColorTable::Update(
+  vtkOpenGLRenderWindow* win, vtkScalarsToColors* lut, const double range[2])
+{
+  if (this->Texture->GetHandle() && this->Source == lut && this->SourceTime == lut->GetMTime() &&
+    this->Range[0] == range[0] && this->Range[1] == range[1])
+  {
+    return;
+  }
+  this->Source = lut;
+  this->SourceTime = lut->GetMTime();
+  this->Range[0] = range[0];
+  this->Range[1] = range[1];
+  this->LogScale = lut->UsingLogScale() != 0 && range[0] > 0.0 && range[1] > 0.0;
+  const int n = EntriesFor(lut);
+  this->Entries = n;
+  // Entry k holds the colour of the centre of bin k of the (linear or log) range, as the
+  // lookup table maps it; the shader picks the bin of each fragment's value.
+  std::vector<unsigned char> rgba(static_cast<size_t>(n + 3) * 4);
+  auto put = [&rgba, lut](int texel, double v) {
+    const unsigned char* c = lut->MapValue(v);
+    std::copy(c, c + 4, &rgba[static_cast<size_t>(texel) * 4]);
+  };
+  const double lo = range[0], hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  const double a = this->LogScale ? std::log10(lo) : lo, b = this->LogScale ? std::log10(hi) : hi;
+  auto valueAt = [&](double t) { return this->LogScale ? std::pow(10.0, a + t * (b - a)) : a + t * (b - a); };
+  put(0, valueAt(-1e-3));
+  for (int k = 0; k < n; ++k)
+  {
+    put(k + 1, valueAt((k + 0.5) / n));
+  }
+  put(n + 1, valueAt(1.0 + 1e-3));
+  put(n + 2, std::numeric_limits<double>::quiet_NaN());
+  this->Texture->SetContext(win);
+  this->Texture->Create2DFromRaw(n + 3, 1, 4, VTK_UNSIGNED_CHAR, rgba.data());
+}
+
+int vtkGeoMipMapColorTable::Activate()
+{
+  this->Texture->Activate();
+  return this->Texture->GetTextureUnit();
+}
+
+void vtkGeoMipMapColorTable::Deactivate()
+{
+  this->Texture->Deactivate();
+}
+
+void vtkGeoMipMapColorTable::Release(vtkWindow* win)
+{
+  this->Texture->ReleaseGraphicsResources(win);
+  this->Source = nullptr;
+}
+
+size_t vtkGeoMipMapColorTable::GetBytes() const
+{
+  return this->Entries > 0 ? static_cast<size_t>(this->Entries + 3) * 4 : 0;
+}

@@ -1,0 +1,141 @@
+/**
+ * @file   vtkGeoMipMapTextures.h
+ * @brief  GPU storage of per-sample DEM data for vtkGeoMipMapMapper: one texel per sample.
+ *
+ * vtkGeoMipMapSampleTexture holds one value (or an RGBA colour) per DEM sample in a 2D
+ * array texture. A DEM wider or taller than GL_MAX_TEXTURE_SIZE is cut into tiles of
+ * tileW x tileH texels, one layer each, that do not overlap: sample (i, j) lives in layer
+ * (j / tileH) * tilesX + i / tileW at texel (i % tileW, j % tileH). The shaders fetch
+ * exact texels (texelFetch), so tiles need no shared borders and show no seams; each
+ * layer is uploaded on its own (glTexSubImage3D straight from the input array, no CPU
+ * copy for float and 16-bit data), so tiles can later be made resident one at a time.
+ *
+ * Storage: float heights as R32F, 16-bit integer heights as R16I / R16UI (converted to
+ * metres in the shader), other scalar types as R32F (converted tile by tile), and
+ * unsigned char RGB(A) colours as RGBA8.
+ *
+ * vtkGeoMipMapColorTable holds a lookup table as a 1D row of colours for the shader.
+ *
+ * Both live in one OpenGL context; the mapper releases them when it changes window.
+ * Not wrapped, not installed: private to geomipmap::Rendering.
+ */
+#ifndef vtkGeoMipMapTextures_h
+#define vtkGeoMipMapTextures_h
+
+#include "vtkNew.h"
+#include "vtkType.h"
+
+#include <cstddef>
+#include <string>
+
+class vtkDataArray;
+class vtkOpenGLRenderWindow;
+class vtkScalarsToColors;
+class vtkTextureObject;
+class vtkWindow;
+
+// How samples are split into layers.
+struct vtkGeoMipMapTileLayout
+{
+  int nx = 0, ny = 0;         // samples
+  int tileW = 0, tileH = 0;   // texels per layer
+  int tilesX = 0, tilesY = 0; // layers = tilesX * tilesY
+
+  /**
+   * The fewest tiles per axis whose size fits maxSize, sized evenly (so a 16385 x 16385
+   * DEM under a 16384 limit takes 2 x 2 layers of 8193 x 8193, not 4 of 16384). Returns ""
+   * or why it cannot fit (more layers than maxLayers).
+   */
+  std::string Plan(int nx, int ny, int maxSize, int maxLayers);
+  int Layers() const { return this->tilesX * this->tilesY; }
+};
+
+class vtkGeoMipMapSampleTexture
+{
+public:
+  enum Format
+  {
+    Float32,
+    Int16,
+    UInt16,
+    RGBA8
+  };
+
+  /**
+   * The texel format that stores `array` (component 0, or colours when `asColors`).
+   */
+  static Format FormatFor(vtkDataArray* array, bool asColors);
+  static size_t BytesPerTexel(Format f);
+
+  vtkGeoMipMapSampleTexture();
+  ~vtkGeoMipMapSampleTexture();
+
+  /**
+   * Uploads `array` (layout.nx * layout.ny tuples) in `format`. Returns "" or the reason
+   * (the driver ran out of memory, the window cannot make the texture); nothing is held
+   * then. The window's context must be current.
+   */
+  std::string Upload(vtkOpenGLRenderWindow* win, vtkDataArray* array, Format format,
+    const vtkGeoMipMapTileLayout& layout);
+
+  bool IsCurrent(vtkDataArray* array, Format format) const;
+  bool HasData() const { return this->Handle != 0; }
+  Format GetFormat() const { return this->Stored; }
+  size_t GetBytes() const { return this->Bytes; }
+
+  /** Binds to a free texture unit (returned) for a draw; Deactivate() after it. */
+  int Activate();
+  void Deactivate();
+
+  /** Deletes the texture; `win`'s context must be current (the mapper pushes it). */
+  void Release(vtkWindow* win);
+
+private:
+  vtkGeoMipMapSampleTexture(const vtkGeoMipMapSampleTexture&) = delete;
+  void operator=(const vtkGeoMipMapSampleTexture&) = delete;
+
+  unsigned int Handle = 0;
+  vtkNew<vtkTextureObject> Unit; // texture-unit bookkeeping of the window, around Handle
+  Format Stored = Float32;
+  size_t Bytes = 0;
+  vtkDataArray* Source = nullptr; // identity only, never dereferenced
+  vtkMTimeType SourceTime = 0;
+};
+
+class vtkGeoMipMapColorTable
+{
+public:
+  /**
+   * Number of table entries: the lookup table's own colour count, within [256, 4096].
+   * Texel 0 is the below-range colour, texels 1..N the table, N + 1 above range, N + 2
+   * the NaN colour, all as the lookup table maps them.
+   */
+  static int EntriesFor(vtkScalarsToColors* lut);
+
+  vtkGeoMipMapColorTable();
+  ~vtkGeoMipMapColorTable();
+
+  /** Rebuilds when the table or the range changed. */
+  void Update(vtkOpenGLRenderWindow* win, vtkScalarsToColors* lut, const double range[2]);
+  int Activate();
+  void Deactivate();
+  void Release(vtkWindow* win);
+  int GetEntries() const { return this->Entries; }
+  bool GetLogScale() const { return this->LogScale; }
+  const double* GetRange() const { return this->Range; }
+  size_t GetBytes() const;
+
+private:
+  vtkGeoMipMapColorTable(const vtkGeoMipMapColorTable&) = delete;
+  void operator=(const vtkGeoMipMapColorTable&) = delete;
+
+  vtkNew<vtkTextureObject> Texture;
+  vtkScalarsToColors* Source = nullptr;
+  vtkMTimeType SourceTime = 0;
+  double Range[2] = { 0.0, 1.0 };
+  int Entries = 0;
+  bool LogScale = false;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGeoMipMapTextures.h
