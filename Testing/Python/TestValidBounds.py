@@ -1,0 +1,82 @@
+"""Mapper bounds are those of the valid samples (issue #16, item 5).
+
+Regression: on SainteHelens.dem the mapper's y bounds were 5107980..5121990 while the
+valid samples span 5108010..5121960 (the first and last rows are all nodata), so
+ResetCamera framed 30 m of nothing. Checked against numpy over the reader's output, for
+the DEM as read and for a copy with whole nodata columns and rows added around it, and
+for an image whose samples are all nodata (uninitialised bounds, as VTK's empty data).
+"""
+import math
+import os
+import sys
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkImageData
+
+import geomipmap
+import gmmtestutil
+import refscene
+
+failures = []
+
+
+def check(cond, what):
+    print(("ok: " if cond else "FAIL: ") + what)
+    if not cond:
+        failures.append(what)
+
+
+def expected(image):
+    h = refscene.heights(image)
+    xs, ys = refscene.sample_xy(image)
+    ok = np.isfinite(h)
+    cols, rows = np.nonzero(ok.any(axis=0))[0], np.nonzero(ok.any(axis=1))[0]
+    x = xs[cols]
+    y = ys[rows]
+    z0 = image.GetOrigin()[2]
+    return (x.min(), x.max(), y.min(), y.max(), z0 + np.nanmin(h), z0 + np.nanmax(h))
+
+
+def padded(image, left, right, bottom, top):
+    h = refscene.heights(image)
+    ny, nx = h.shape
+    out = np.full((ny + bottom + top, nx + left + right), np.nan, np.float32)
+    out[bottom:bottom + ny, left:left + nx] = h
+    img = vtkImageData()
+    img.SetDimensions(out.shape[1], out.shape[0], 1)
+    sx, sy, _ = image.GetSpacing()
+    ox, oy, oz = image.GetOrigin()
+    img.SetSpacing(sx, sy, 1.0)
+    img.SetOrigin(ox - left * sx, oy - bottom * sy, oz)
+    a = numpy_to_vtk(out.ravel(), deep=True)
+    a.SetName("Elevation")
+    img.GetPointData().SetScalars(a)
+    return img
+
+
+data = gmmtestutil.data_dir_or_skip()
+reader = geomipmap.vtkGeoMipMapTerrainReader()
+reader.SetFileName(os.path.join(data, "SainteHelens.dem"))
+reader.Update()
+image = reader.GetOutput()
+
+for name, img in (("SainteHelens.dem", image),
+                  ("padded with nodata", padded(image, 3, 5, 2, 7))):
+    mapper = geomipmap.vtkGeoMipMapMapper()
+    mapper.SetInputData(img)
+    got = mapper.GetBounds()
+    want = expected(img)
+    check(all(abs(g - w) <= 1e-6 * max(1.0, abs(w)) for g, w in zip(got, want)),
+          f"{name}: bounds {tuple(round(v, 3) for v in got)} == valid samples "
+          f"{tuple(round(v, 3) for v in want)}")
+
+empty = padded(image, 0, 0, 0, 0)
+empty.GetPointData().GetScalars().Fill(float("nan"))
+mapper = geomipmap.vtkGeoMipMapMapper()
+mapper.SetInputData(empty)
+b = mapper.GetBounds()
+check(b[0] > b[1], f"all-nodata image: uninitialised bounds, got {b}")
+
+print("PASS" if not failures else f"{len(failures)} failure(s)")
+sys.exit(1 if failures else 0)

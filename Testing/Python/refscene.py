@@ -1,0 +1,116 @@
+"""A stock full-resolution VTK scene to check vtkGeoMipMapMapper against, and pixel tools.
+
+Why: a test of the LOD mapper must compare it with something that does not use the engine.
+reference_mesh() builds every full-resolution quad of a DEM image as two triangles with
+plain numpy and vtkPolyData (the same diagonal the engine uses, quads touching nodata left
+out, point id = image point id), drawn by a stock vtkPolyDataMapper: what the terrain
+looks like without level of detail.
+"""
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
+                                         vtkRenderWindow, vtkWindowToImageFilter)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL factory overrides)
+
+
+def heights(image):
+    """(ny, nx) float64 heights of a 2D image's active scalars (NaN = nodata)."""
+    nx, ny, _ = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetScalars()).astype(np.float64).reshape(ny, nx)
+
+
+def sample_xy(image):
+    """World x (per column) and y (per row) of the samples (axis-aligned images)."""
+    nx, ny, _ = image.GetDimensions()
+    ox, oy, _ = image.GetOrigin()
+    sx, sy, _ = image.GetSpacing()
+    e = image.GetExtent()
+    return ox + (e[0] + np.arange(nx)) * sx, oy + (e[2] + np.arange(ny)) * sy
+
+
+def reference_mesh(image, normals=True):
+    """Every valid full-resolution quad as two triangles; z = origin z + height."""
+    nx, ny, _ = image.GetDimensions()
+    h = heights(image)
+    xs, ys = sample_xy(image)
+    z0 = image.GetOrigin()[2]
+    X, Y = np.meshgrid(xs, ys)
+    Z = np.where(np.isfinite(h), h, np.nanmin(h) if np.isfinite(h).any() else 0.0) + z0
+    pts = np.column_stack([X.ravel(), Y.ravel(), Z.ravel()])
+    ok = np.isfinite(h)
+    quad = ok[:-1, :-1] & ok[:-1, 1:] & ok[1:, :-1] & ok[1:, 1:]
+    j, i = np.nonzero(quad)
+    a = j * nx + i
+    b, c, d = a + 1, a + nx + 1, a + nx
+    tris = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    if (image.GetSpacing()[0] < 0) != (image.GetSpacing()[1] < 0):
+        tris = tris[:, [0, 2, 1]]  # keep counter-clockwise seen from +z
+    cells = np.column_stack([np.full(len(tris), 3), tris]).ravel().astype(np.int64)
+    poly = vtkPolyData()
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(pts, deep=True))
+    poly.SetPoints(points)
+    ca = vtkCellArray()
+    ca.SetCells(len(tris), numpy_to_vtkIdTypeArray(cells, deep=True))
+    poly.SetPolys(ca)
+    scal = numpy_to_vtk(h.ravel().astype(np.float32), deep=True)
+    scal.SetName("Elevation")
+    poly.GetPointData().SetScalars(scal)
+    if not normals:
+        return poly
+    n = vtkPolyDataNormals()
+    n.SetInputData(poly)
+    n.SplittingOff()
+    n.ConsistencyOff()
+    n.Update()
+    return n.GetOutput()
+
+
+def reference_actor(image):
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(reference_mesh(image))
+    mapper.ScalarVisibilityOff()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    return actor
+
+
+def window(width, height, renderer=None):
+    """Off-screen window without multisampling (deterministic pixels)."""
+    win = vtkRenderWindow()
+    win.SetOffScreenRendering(1)
+    win.SetMultiSamples(0)
+    win.SetSize(width, height)
+    if renderer is not None:
+        win.AddRenderer(renderer)
+    return win
+
+
+def grab(win):
+    """The window's RGB pixels as a (height, width, 3) uint8 array, row 0 at the bottom."""
+    w2i = vtkWindowToImageFilter()
+    w2i.SetInput(win)
+    w2i.SetInputBufferTypeToRGB()
+    w2i.ReadFrontBufferOff()
+    w2i.Update()
+    img = w2i.GetOutput()
+    w, h, _ = img.GetDimensions()
+    return vtk_to_numpy(img.GetPointData().GetScalars()).reshape(h, w, 3).copy()
+
+
+def covered(pixels, background):
+    """Mask of pixels that differ from the background colour (0..1 floats)."""
+    bg = np.round(np.asarray(background) * 255).astype(int)
+    return np.abs(pixels.astype(int) - bg).max(axis=2) > 2
+
+
+def dilate(mask, r):
+    """Square dilation by r pixels (numpy only)."""
+    out = mask.copy()
+    for dy in range(-r, r + 1):
+        for dx in range(-r, r + 1):
+            out |= np.roll(np.roll(mask, dy, axis=0), dx, axis=1)
+    return out
