@@ -269,8 +269,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   // Refuse before anything large is allocated: the tables are small next to the samples,
   // so the estimate is the textures plus a float copy when the heights cannot be shared.
   vtkDataArray* heights = image->GetPointData()->GetScalars();
-  if (heights && (!in.Terrain || in.Terrain->GetHeights() != heights ||
-                   !in.Heights.IsCurrent(heights, vtkGeoMipMapSampleTexture::FormatFor(heights, false))))
+  if (heights && (!in.Terrain || in.Terrain->GetHeights() != heights || !in.Heights.HasData()))
   {
     const double samples = static_cast<double>(image->GetNumberOfPoints());
     const auto format = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
@@ -529,9 +528,14 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   vtkDataArray* heights = in.Terrain->GetHeights();
   GLint maxLayers = 256;
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  std::string err = in.Layout.Plan(hf.nx, hf.ny, vtkTextureObject::GetMaximumTextureSize(win), maxLayers);
+  int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
+  if (this->MaximumTileSize > 0)
+  {
+    maxSize = std::min(maxSize, this->MaximumTileSize);
+  }
+  std::string err = in.Layout.Plan(hf.nx, hf.ny, maxSize, maxLayers);
   const auto heightFormat = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
-  if (err.empty() && !in.Heights.IsCurrent(heights, heightFormat))
+  if (err.empty() && !in.Heights.IsCurrent(heights, heightFormat, in.Layout))
   {
     const auto start = Clock::now();
     err = in.Heights.Upload(win, heights, heightFormat, in.Layout);
@@ -587,7 +591,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   }
   const auto format = vtkGeoMipMapSampleTexture::FormatFor(scalars, direct);
   const auto stored = direct ? format : vtkGeoMipMapSampleTexture::Float32;
-  if (!in.Colors.IsCurrent(scalars, stored))
+  if (!in.Colors.IsCurrent(scalars, stored, in.Layout))
   {
     err = in.Colors.Upload(win, scalars, stored, in.Layout);
     ++this->NumberOfHeightUploads;
@@ -907,6 +911,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
+  os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "NumberOfRenderedTriangles: " << this->GetNumberOfRenderedTriangles() << "\n";
   os << indent << "NumberOfVisibleBlocks: " << this->GetNumberOfVisibleBlocks() << "\n";
   os << indent << "NumberOfCulledBlocks: " << this->GetNumberOfCulledBlocks() << "\n";

@@ -114,6 +114,16 @@ public:
 
   ///@{
   /**
+   * Largest side, in texels, of one layer of the height texture; 0 (default) is the
+   * OpenGL limit (GL_MAX_TEXTURE_SIZE). A DEM larger than this is split into layers with
+   * no seam; a smaller value trades texture layers for smaller uploads.
+   */
+  vtkSetClampMacro(MaximumTileSize, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaximumTileSize, int);
+  ///@}
+
+  ///@{
+  /**
    * Memory, in bytes, a DEM may take (GPU textures, plus the engine's tables and any
    * height copy); 0 (default) means the memory available on this machine now. A DEM
    * estimated to need more is refused before anything is allocated.
@@ -228,6 +238,7 @@ protected:
   int BlockSize = 64;
   double HeightScale = 1.0;
   vtkTypeInt64 MemoryLimit = 0;
+  int MaximumTileSize = 0;
   double LastUpdateTime = 0.0;
   int NumberOfHeightUploads = 0;
   int NumberOfIndexUploads = 0;

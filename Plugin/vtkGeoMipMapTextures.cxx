@@ -149,10 +149,11 @@ size_t vtkGeoMipMapSampleTexture::BytesPerTexel(Format f)
 vtkGeoMipMapSampleTexture::vtkGeoMipMapSampleTexture() = default;
 vtkGeoMipMapSampleTexture::~vtkGeoMipMapSampleTexture() = default;
 
-bool vtkGeoMipMapSampleTexture::IsCurrent(vtkDataArray* array, Format format) const
+bool vtkGeoMipMapSampleTexture::IsCurrent(
+  vtkDataArray* array, Format format, const vtkGeoMipMapTileLayout& layout) const
 {
   return this->Handle != 0 && this->Source == array && this->SourceTime == array->GetMTime() &&
-    this->Stored == format;
+    this->Stored == format && this->Layout == layout;
 }
 
 //------------------------------------------------------------------------------
@@ -224,6 +225,7 @@ std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDat
   this->Bytes = static_cast<size_t>(layout.Layers()) * layout.tileW * layout.tileH * texel;
   this->Source = array;
   this->SourceTime = array->GetMTime();
+  this->Layout = layout;
   return std::string();
 }
 

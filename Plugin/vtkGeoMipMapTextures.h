@@ -48,6 +48,11 @@ struct vtkGeoMipMapTileLayout
    */
   std::string Plan(int nx, int ny, int maxSize, int maxLayers);
   int Layers() const { return this->tilesX * this->tilesY; }
+  bool operator==(const vtkGeoMipMapTileLayout& o) const
+  {
+    return nx == o.nx && ny == o.ny && tileW == o.tileW && tileH == o.tileH && tilesX == o.tilesX &&
+      tilesY == o.tilesY;
+  }
 };
 
 class vtkGeoMipMapSampleTexture
@@ -78,7 +83,7 @@ public:
   std::string Upload(vtkOpenGLRenderWindow* win, vtkDataArray* array, Format format,
     const vtkGeoMipMapTileLayout& layout);
 
-  bool IsCurrent(vtkDataArray* array, Format format) const;
+  bool IsCurrent(vtkDataArray* array, Format format, const vtkGeoMipMapTileLayout& layout) const;
   bool HasData() const { return this->Handle != 0; }
   Format GetFormat() const { return this->Stored; }
   size_t GetBytes() const { return this->Bytes; }
@@ -100,6 +105,7 @@ private:
   size_t Bytes = 0;
   vtkDataArray* Source = nullptr; // identity only, never dereferenced
   vtkMTimeType SourceTime = 0;
+  vtkGeoMipMapTileLayout Layout;
 };
 
 class vtkGeoMipMapColorTable
