@@ -21,9 +21,11 @@
 #include "vtkTypeInt64Array.h"
 
 #include "Engine.h"
+#include "RayCast.h"
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 struct vtkGeoMipMapFilter::Internals
@@ -199,6 +201,25 @@ int vtkGeoMipMapFilter::RequestData(
   addDouble("MaximumScreenSpaceError", stats->maxScreenError);
   addDouble("MaximumGeometricError", stats->maxGeometricError);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+double vtkGeoMipMapFilter::GetHeightAt(double x, double y)
+{
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  this->GetInputAlgorithm()->Update();
+  std::string err;
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(
+    vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0)), this->BlockSize, this, err);
+  if (!terrain)
+  {
+    vtkErrorMacro("Cannot use the input image: " << err);
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return gmm::heightAt(terrain->GetTerrain()->hf, x, y, this->HeightScale);
 }
 
 //------------------------------------------------------------------------------

@@ -109,6 +109,14 @@ public:
   vtkGetMacro(MaximumGeometricError, double);
   ///@}
 
+  /**
+   * Height of the full-resolution surface at data coordinates (x, y): origin z +
+   * HeightScale * h, linear on the level-0 triangle under it (the triangulation the mesh
+   * uses at full resolution), whatever level of detail the output holds; NaN outside the
+   * DEM or over nodata. Updates the input when needed.
+   */
+  double GetHeightAt(double x, double y);
+
   vtkMTimeType GetMTime() override;
 
 protected:

@@ -178,6 +178,11 @@ bool vtkGeoMipMapScreenError::Compute()
   const int nx = dims[0], ny = dims[1];
   auto sx = [&](int i) { return origin[0] + i * spacing[0]; };
   auto sy = [&](int j) { return origin[1] + j * spacing[1]; };
+  // The true surface: origin z + HeightScale * h (where vtkWarpScalar with that scale factor
+  // puts it). Drawn heights are kept relative to origin z, so a 6.4e6 m origin costs the
+  // float raster no precision.
+  const double z0 = origin[2], scale = this->HeightScale;
+  auto sz = [&](vtkIdType k) { return z0 + scale * h(k); };
 
   // Pass 1: the index rectangle of the in-view samples.
   Window w;
@@ -189,7 +194,7 @@ bool vtkGeoMipMapScreenError::Compute()
   {
     for (int i = 0; i < nx; ++i)
     {
-      const double z = h(static_cast<vtkIdType>(j) * nx + i);
+      const double z = sz(static_cast<vtkIdType>(j) * nx + i);
       if (!std::isnan(z) && project(sx(i), sy(j), z, px, py, in) && in)
       {
         w.I0 = std::min(w.I0, i), w.I1 = std::max(w.I1, i);
@@ -225,7 +230,7 @@ bool vtkGeoMipMapScreenError::Compute()
           pts->GetPoint(corner[c], p);
           gx[c] = (p[0] - origin[0]) / spacing[0];
           gy[c] = (p[1] - origin[1]) / spacing[1];
-          gz[c] = p[2];
+          gz[c] = p[2] - z0;
         }
         Rasterise(gx, gy, gz, w);
       }
@@ -240,7 +245,7 @@ bool vtkGeoMipMapScreenError::Compute()
   {
     for (int i = w.I0; i <= w.I1; ++i)
     {
-      const double z = h(static_cast<vtkIdType>(j) * nx + i);
+      const double z = sz(static_cast<vtkIdType>(j) * nx + i);
       double tx, ty;
       if (std::isnan(z) || !project(sx(i), sy(j), z, tx, ty, in) || !in)
       {
@@ -253,7 +258,7 @@ bool vtkGeoMipMapScreenError::Compute()
       for (const float zd : { w.Lo[k], w.Hi[k] })
       {
         bool dummy;
-        ok = ok && project(sx(i), sy(j), zd, px, py, dummy);
+        ok = ok && project(sx(i), sy(j), z0 + zd, px, py, dummy);
         worst = std::max(worst, std::hypot(px - tx, py - ty));
       }
       if (!ok)
@@ -282,6 +287,7 @@ void vtkGeoMipMapScreenError::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Heightfield: " << this->Heightfield << "\n";
   os << indent << "Mesh: " << this->Mesh << "\n";
+  os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1] << "\n";
   os << indent << "MaximumError: " << this->MaximumError << "\n";
   os << indent << "Percentile99Error: " << this->Percentile99Error << "\n";

@@ -4,7 +4,8 @@
  *
  * Independent of the engine's error bound (no gmm code is used): for every
  * full-resolution sample of the heightfield that lies inside the view frustum, the true
- * point (x, y, h) and the drawn surface's point (x, y, z) at the same x, y are projected
+ * point (x, y, origin z + HeightScale * h) and the drawn surface's point (x, y, z) at the
+ * same x, y are projected
  * to pixels with the given world-to-clip matrix, and their distance is taken. Reported:
  * the maximum, the 99th percentile and the mean of that distance over the in-view samples,
  * the number of in-view samples, and the number of in-view samples that could not be
@@ -55,6 +56,15 @@ public:
 
   ///@{
   /**
+   * Vertical exaggeration of the true surface (origin z + HeightScale * h), to measure a
+   * mesh drawn with a height scale. Default 1.
+   */
+  vtkSetMacro(HeightScale, double);
+  vtkGetMacro(HeightScale, double);
+  ///@}
+
+  ///@{
+  /**
    * The drawn triangles, in the heightfield's world coordinates.
    */
   virtual void SetMesh(vtkPolyData*);
@@ -96,6 +106,7 @@ protected:
   double Matrix[16];
   bool HasMatrix = false;
   int ViewportSize[2] = { 1280, 720 };
+  double HeightScale = 1.0;
 
   double MaximumError = 0.0;
   double Percentile99Error = 0.0;

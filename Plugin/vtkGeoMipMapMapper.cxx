@@ -548,6 +548,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
     return false;
   }
   using O = vtkGeoMipMapShaders::Options;
+  in.Shading.SingleLayer = in.Layout.Layers() == 1;
   in.Shading.HeightFormat = heightFormat == vtkGeoMipMapSampleTexture::Int16 ? O::Int16Heights
     : heightFormat == vtkGeoMipMapSampleTexture::UInt16                     ? O::UInt16Heights
                                                                              : O::FloatHeights;
@@ -767,6 +768,11 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
   set2i("gmmGridSize", hf.nx, hf.ny);
   set2i("gmmTileSize", in.Layout.tileW, in.Layout.tileH);
   seti("gmmTilesX", in.Layout.tilesX);
+  const float tileScale[2] = { 1.0f / in.Layout.tileW, 1.0f / in.Layout.tileH };
+  if (p->IsUniformUsed("gmmTileScale"))
+  {
+    p->SetUniform2f("gmmTileScale", tileScale);
+  }
   const float spacing[2] = { static_cast<float>(hf.dx), static_cast<float>(hf.dy) };
   if (p->IsUniformUsed("gmmSpacing"))
   {

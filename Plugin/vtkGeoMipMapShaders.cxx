@@ -19,67 +19,91 @@ const char* SamplerFor(vtkGeoMipMapShaders::Options::Heights h)
   }
 }
 
-// Sample (i, j) of a tiled array texture (vtkGeoMipMapTextures.h): layer, then texel.
+// Sample (i, j) of a tiled array texture (vtkGeoMipMapTextures.h): layer, then texel. One
+// layer needs no arithmetic; several divide by the tile size through a float reciprocal
+// (exact here: (i + 0.5) / w never rounds across an integer for i < 2^24), because integer
+// division is scalarised, hence slow, on software rasterisers.
 std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
 {
   std::string s = std::string("uniform highp ") + SamplerFor(o.HeightFormat) +
     " gmmHeights;\n"
     "uniform ivec2 gmmGridSize;   // samples nx, ny\n"
     "uniform ivec2 gmmTileSize;   // texels per layer\n"
+    "uniform vec2 gmmTileScale;   // 1 / texels per layer\n"
     "uniform int gmmTilesX;       // layers per row of tiles\n"
     "uniform vec2 gmmSpacing;     // dx, dy\n"
-    "uniform float gmmHeightScale; // vertical exaggeration\n"
-    "ivec3 gmmTexel(ivec2 ij)\n"
-    "{\n"
-    "  ivec2 tile = ij / gmmTileSize;\n"
-    "  return ivec3(ij - tile * gmmTileSize, tile.y * gmmTilesX + tile.x);\n"
-    "}\n"
-    "float gmmHeight(ivec2 ij) { return float(texelFetch(gmmHeights, gmmTexel(ij), 0).r); }\n";
+    "uniform float gmmHeightScale; // vertical exaggeration\n";
+  if (o.SingleLayer)
+  {
+    s += "ivec3 gmmTexel(ivec2 ij) { return ivec3(ij, 0); }\n";
+  }
+  else
+  {
+    s += "ivec3 gmmTexel(ivec2 ij)\n"
+         "{\n"
+         "  ivec2 tile = ivec2((vec2(ij) + 0.5) * gmmTileScale);\n"
+         "  return ivec3(ij - tile * gmmTileSize, tile.y * gmmTilesX + tile.x);\n"
+         "}\n";
+  }
+  s += "float gmmHeight(ivec2 ij) { return float(texelFetch(gmmHeights, gmmTexel(ij), 0).r); }\n";
   return s;
 }
 
-// The fragment's level-0 triangle and barycentric weights (Tessellate.h's quad split).
-const char* const kTriangle =
+// The fragment's level-0 quad (Tessellate.h's split along its (0,0)-(1,1) diagonal):
+// corner heights, fetched once for both the normal and the colour, and the weights of the
+// triangle under the fragment on the corners (one of them 0).
+const char* const kQuad =
   "in vec2 gmmGridVSOutput;\n"
-  "void gmmTriangle(vec2 g, out ivec2 v0, out ivec2 v1, out ivec2 v2, out vec3 w)\n"
+  "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n"
+  "struct GmmQuad { ivec2 c; float h00, h10, h01, h11; vec4 w; }; // w: 00, 10, 01, 11\n"
+  "GmmQuad gmmQuad(vec2 g)\n"
   "{\n"
+  "  GmmQuad q;\n"
   "  vec2 gc = clamp(g, vec2(0.0), vec2(gmmGridSize - 1));\n"
-  "  ivec2 c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
-  "  vec2 f = gc - vec2(c);\n"
-  "  v0 = c;\n"
-  "  v2 = c + ivec2(1, 1);\n"
-  "  if (f.x >= f.y) { v1 = c + ivec2(1, 0); w = vec3(1.0 - f.x, f.x - f.y, f.y); }\n"
-  "  else { v1 = c + ivec2(0, 1); w = vec3(1.0 - f.y, f.y - f.x, f.x); }\n"
-  "}\n"
-  "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n";
+  "  q.c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
+  "  vec2 f = gc - vec2(q.c);\n"
+  "  q.w = f.x >= f.y ? vec4(1.0 - f.x, f.x - f.y, 0.0, f.y) : vec4(1.0 - f.y, 0.0, f.y - f.x, f.x);\n"
+  "  q.h00 = gmmHeight(q.c);\n"
+  "  q.h10 = gmmHeight(q.c + ivec2(1, 0));\n"
+  "  q.h01 = gmmHeight(q.c + ivec2(0, 1));\n"
+  "  q.h11 = gmmHeight(q.c + ivec2(1, 1));\n"
+  "  return q;\n"
+  "}\n";
 
-// Central differences as vtkGeoMipMapConversion::SampleNormal computes them.
+// Central differences as vtkGeoMipMapConversion::SampleNormal computes them, at the four
+// corners of the quad from the corners and their eight outer neighbours (12 fetches), then
+// interpolated with the triangle's weights as the full-resolution mesh interpolates.
 const char* const kNormal =
-  "float gmmSlope(ivec2 c, ivec2 d, float step, float hc)\n"
+  "float gmmOuter(ivec2 ij)\n"
   "{\n"
-  "  ivec2 a = c - d, b = c + d;\n"
-  "  bool hasA = a.x >= 0 && a.y >= 0;\n"
-  "  bool hasB = b.x < gmmGridSize.x && b.y < gmmGridSize.y;\n"
-  "  float ha = hasA ? gmmHeight(a) : 0.0, hb = hasB ? gmmHeight(b) : 0.0;\n"
-  "  hasA = hasA && gmmValid(ha);\n"
-  "  hasB = hasB && gmmValid(hb);\n"
-  "  if (hasA && hasB) { return (hb - ha) / (2.0 * step); }\n"
-  "  if (hasB && gmmValid(hc)) { return (hb - hc) / step; }\n"
-  "  if (hasA && gmmValid(hc)) { return (hc - ha) / step; }\n"
+  "  bool inside = ij.x >= 0 && ij.y >= 0 && ij.x < gmmGridSize.x && ij.y < gmmGridSize.y;\n"
+  "  return inside ? gmmHeight(ij) : 3.0e38; // outside: no sample (gmmValid is false)\n"
+  "}\n"
+  "float gmmSlope(float ha, float hc, float hb, float step)\n"
+  "{\n"
+  "  bool a = gmmValid(ha), b = gmmValid(hb), c = gmmValid(hc);\n"
+  "  if (a && b) { return (hb - ha) / (2.0 * step); }\n"
+  "  if (b && c) { return (hb - hc) / step; }\n"
+  "  if (a && c) { return (hc - ha) / step; }\n"
   "  return 0.0;\n"
   "}\n"
-  "vec3 gmmSampleNormal(ivec2 c)\n"
+  "vec3 gmmCornerNormal(float w, float c, float e, float s, float n)\n"
   "{\n"
-  "  float hc = gmmHeight(c);\n"
-  "  float gx = gmmHeightScale * gmmSlope(c, ivec2(1, 0), gmmSpacing.x, hc);\n"
-  "  float gy = gmmHeightScale * gmmSlope(c, ivec2(0, 1), gmmSpacing.y, hc);\n"
+  "  float gx = gmmHeightScale * gmmSlope(w, c, e, gmmSpacing.x);\n"
+  "  float gy = gmmHeightScale * gmmSlope(s, c, n, gmmSpacing.y);\n"
   "  return normalize(vec3(-gx, -gy, 1.0));\n"
   "}\n"
-  "vec3 gmmNormalMC(vec2 g)\n"
+  "vec3 gmmNormalMC(GmmQuad q)\n"
   "{\n"
-  "  ivec2 v0, v1, v2; vec3 w;\n"
-  "  gmmTriangle(g, v0, v1, v2, w);\n"
-  "  return w.x * gmmSampleNormal(v0) + w.y * gmmSampleNormal(v1) + w.z * gmmSampleNormal(v2);\n"
+  "  ivec2 c = q.c;\n"
+  "  float hm0 = gmmOuter(c + ivec2(-1, 0)), h0m = gmmOuter(c + ivec2(0, -1));\n"
+  "  float h20 = gmmOuter(c + ivec2(2, 0)), h1m = gmmOuter(c + ivec2(1, -1));\n"
+  "  float hm1 = gmmOuter(c + ivec2(-1, 1)), h02 = gmmOuter(c + ivec2(0, 2));\n"
+  "  float h21 = gmmOuter(c + ivec2(2, 1)), h12 = gmmOuter(c + ivec2(1, 2));\n"
+  "  return q.w.x * gmmCornerNormal(hm0, q.h00, q.h10, h0m, q.h01) +\n"
+  "    q.w.y * gmmCornerNormal(q.h00, q.h10, h20, h1m, q.h11) +\n"
+  "    q.w.z * gmmCornerNormal(hm1, q.h01, q.h11, q.h00, h02) +\n"
+  "    q.w.w * gmmCornerNormal(q.h01, q.h11, h21, q.h10, h12);\n"
   "}\n";
 
 // Lookup-table colours: texel 0 below range, 1..n the bins, n + 1 above, n + 2 NaN.
@@ -107,31 +131,27 @@ std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
   {
     case O::MapHeights:
       return std::string(kColorTable) +
-        "vec4 gmmColor(vec2 g)\n"
+        "vec4 gmmColor(GmmQuad q)\n"
         "{\n"
-        "  ivec2 v0, v1, v2; vec3 w;\n"
-        "  gmmTriangle(g, v0, v1, v2, w);\n"
-        "  return gmmMapScalar(w.x * gmmHeight(v0) + w.y * gmmHeight(v1) + w.z * gmmHeight(v2));\n"
+        "  return gmmMapScalar(dot(q.w, vec4(q.h00, q.h10, q.h01, q.h11)));\n"
         "}\n";
     case O::MapScalars:
       return std::string(kColorTable) +
         "uniform highp sampler2DArray gmmScalars;\n"
         "float gmmScalar(ivec2 ij) { return texelFetch(gmmScalars, gmmTexel(ij), 0).r; }\n"
-        "vec4 gmmColor(vec2 g)\n"
+        "vec4 gmmColor(GmmQuad q)\n"
         "{\n"
-        "  ivec2 v0, v1, v2; vec3 w;\n"
-        "  gmmTriangle(g, v0, v1, v2, w);\n"
-        "  return gmmMapScalar(w.x * gmmScalar(v0) + w.y * gmmScalar(v1) + w.z * gmmScalar(v2));\n"
+        "  vec4 s = vec4(gmmScalar(q.c), gmmScalar(q.c + ivec2(1, 0)), gmmScalar(q.c + ivec2(0, 1)),\n"
+        "    gmmScalar(q.c + ivec2(1, 1)));\n"
+        "  return gmmMapScalar(dot(q.w, s));\n"
         "}\n";
     case O::DirectColors:
       return "uniform highp sampler2DArray gmmColors;\n"
-             "vec4 gmmColor(vec2 g)\n"
+             "vec4 gmmRGBA(ivec2 ij) { return texelFetch(gmmColors, gmmTexel(ij), 0); }\n"
+             "vec4 gmmColor(GmmQuad q)\n"
              "{\n"
-             "  ivec2 v0, v1, v2; vec3 w;\n"
-             "  gmmTriangle(g, v0, v1, v2, w);\n"
-             "  return w.x * texelFetch(gmmColors, gmmTexel(v0), 0) +\n"
-             "    w.y * texelFetch(gmmColors, gmmTexel(v1), 0) +\n"
-             "    w.z * texelFetch(gmmColors, gmmTexel(v2), 0);\n"
+             "  return q.w.x * gmmRGBA(q.c) + q.w.y * gmmRGBA(q.c + ivec2(1, 0)) +\n"
+             "    q.w.z * gmmRGBA(q.c + ivec2(0, 1)) + q.w.w * gmmRGBA(q.c + ivec2(1, 1));\n"
              "}\n";
     default:
       return std::string();
@@ -146,7 +166,7 @@ namespace vtkGeoMipMapShaders
 std::string Options::Key() const
 {
   return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
-    (this->TextureCoordinates ? "t" : "-");
+    (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
@@ -206,23 +226,26 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
     vtkShaderProgram::Substitute(gs, "EmitVertex();", "gmmGridGSOutput = gmmGridVSOutput[i];\n    EmitVertex();");
   }
 
-  // Fragment shader: full-resolution normal and colour at the fragment's grid position.
-  vtkShaderProgram::Substitute(
-    fs, "//GMM::Dec", FetchFunctions(o) + kTriangle + kNormal + ColorFunctions(o));
-  std::string color;
-  if (o.Color != Options::PropertyColor)
+  // Fragment shader: full-resolution normal and colour at the fragment's grid position,
+  // from one fetch of its quad's corners.
+  const bool lit = fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos;
+  const bool colored = o.Color != Options::PropertyColor;
+  vtkShaderProgram::Substitute(fs, "//GMM::Dec",
+    FetchFunctions(o) + kQuad + (lit ? kNormal : "") + ColorFunctions(o));
+  std::string color = lit || colored ? "  GmmQuad gmmQ = gmmQuad(gmmGridVSOutput);\n" : "";
+  if (colored)
   {
-    color = "  vec4 gmmC = gmmColor(gmmGridVSOutput);\n"
-            "  ambientColor = ambientIntensity * gmmC.rgb;\n"
-            "  diffuseColor = diffuseIntensity * gmmC.rgb;\n"
-            "  opacity = opacityUniform * gmmC.a;\n";
+    color += "  vec4 gmmC = gmmColor(gmmQ);\n"
+             "  ambientColor = ambientIntensity * gmmC.rgb;\n"
+             "  diffuseColor = diffuseIntensity * gmmC.rgb;\n"
+             "  opacity = opacityUniform * gmmC.a;\n";
   }
   vtkShaderProgram::Substitute(fs, "//GMM::Color::Impl", color);
   // Lit: VTK declared and normalised an interpolated normalVCVSOutput; replace its value.
-  if (fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos)
+  if (lit)
   {
     vtkShaderProgram::Substitute(fs, "//VTK::Normal::Impl",
-      "  normalVCVSOutput = normalize(normalMatrix * gmmNormalMC(gmmGridVSOutput));\n"
+      "  normalVCVSOutput = normalize(normalMatrix * gmmNormalMC(gmmQ));\n"
       "  if (gl_FrontFacing == false) { normalVCVSOutput = -normalVCVSOutput; }\n"
       "//VTK::Normal::Impl");
   }

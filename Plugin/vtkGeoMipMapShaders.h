@@ -42,6 +42,7 @@ struct Options
     DirectColors   // an RGBA texture
   } Color = PropertyColor;
   bool TextureCoordinates = false; // the actor is textured
+  bool SingleLayer = true;         // the heights fit one texture layer
 
   /** A short string that differs when the shader source must differ. */
   std::string Key() const;

@@ -110,20 +110,26 @@ void drawFan(TriangleSink& sink, GridPoint apex, const std::vector<GridPoint>& r
 // Joins the edge polyline (outer) to the inner ring polyline (inner) of one side. Both run
 // in the block's counter-clockwise direction; `along` gives each point's position along
 // the side. The merge advances whichever polyline's next point comes first, which cuts the
-// strip into alternating fans: any edge level joins any inner level.
+// strip into alternating fans: any edge level joins any inner level. When the next outer
+// and inner points are level (a regular quad, as when both sides have the block's level),
+// `innerFirst` picks the quad's diagonal: the merge then splits it along the same
+// (i, j)-(i+1, j+1) diagonal as the inner grid, so that a block with its own edges draws
+// one regular triangulation (at level 0, exactly the full-resolution one).
 template <typename Along>
 void drawSideStrip(TriangleSink& sink, const std::vector<GridPoint>& outer,
-  const std::vector<GridPoint>& inner, Along along)
+  const std::vector<GridPoint>& inner, Along along, bool innerFirst)
 {
+  // True when the outer point at position x is to be joined before the inner one at y.
+  auto outerBefore = [innerFirst](int x, int y) { return innerFirst ? x < y : x <= y; };
   std::size_t a = 0, b = 0;
   while (a + 1 < outer.size() || b + 1 < inner.size())
   {
     const bool advanceOuter = b + 1 >= inner.size() ||
-      (a + 1 < outer.size() && along(outer[a + 1]) <= along(inner[b + 1]));
+      (a + 1 < outer.size() && outerBefore(along(outer[a + 1]), along(inner[b + 1])));
     if (advanceOuter)
     {
       std::size_t end = a + 1;
-      while (end + 1 < outer.size() && (b + 1 >= inner.size() || along(outer[end + 1]) <= along(inner[b + 1])))
+      while (end + 1 < outer.size() && (b + 1 >= inner.size() || outerBefore(along(outer[end + 1]), along(inner[b + 1]))))
       {
         ++end;
       }
@@ -133,7 +139,7 @@ void drawSideStrip(TriangleSink& sink, const std::vector<GridPoint>& outer,
     else
     {
       std::size_t end = b + 1;
-      while (end + 1 < inner.size() && (a + 1 < outer.size() && along(inner[end + 1]) < along(outer[a + 1])))
+      while (end + 1 < inner.size() && (a + 1 < outer.size() && !outerBefore(along(outer[a + 1]), along(inner[end + 1]))))
       {
         ++end;
       }
@@ -161,7 +167,7 @@ void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ x, r.j0 });
       for (std::size_t u = 1; u < k; ++u)
         inner.push_back({ C[u], R[1] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.i; });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.i; }, true);
       break;
     case East:
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
@@ -169,7 +175,7 @@ void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ r.i1, y });
       for (std::size_t t = 1; t < L; ++t)
         inner.push_back({ C[k - 1], R[t] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.j; });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.j; }, false);
       break;
     case North:
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
@@ -177,7 +183,7 @@ void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ *it, r.j1 });
       for (std::size_t u = k - 1; u >= 1; --u)
         inner.push_back({ C[u], R[L - 1] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.i; });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.i; }, true);
       break;
     default: // West
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
@@ -185,7 +191,7 @@ void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ r.i0, *it });
       for (std::size_t t = L - 1; t >= 1; --t)
         inner.push_back({ C[1], R[t] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.j; });
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.j; }, false);
       break;
   }
 }

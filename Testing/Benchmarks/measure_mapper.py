@@ -1,0 +1,140 @@
+"""Memory and time of vtkGeoMipMapMapper on one synthetic DEM: one process, one figure set.
+
+Why a process per DEM: peak RSS (ru_maxrss) is a process-lifetime figure, and on Mesa's
+llvmpipe the "GPU" textures and buffers live in the same RSS, so one run per DEM size and
+height type gives an honest bytes-per-sample figure, input image included.
+
+    xvfb-run -a /usr/bin/python3 measure_mapper.py 8193 [float32|int16] [--frames 24]
+        [--no-color] [--no-lighting]
+
+Steps, each timed: generate the DEM (vtkGeoMipMapFractalSource; int16 = the same heights
+rounded, converted in row bands so no second float copy is held), first frame (the
+terrain's tables, the height upload and the first LOD and draw), then an orbit of
+--frames frames at tau = 1, 1280 x 720 (median frame time, Render + glFinish). Prints one
+JSON object. Works with the earlier, vertex-buffer mapper too (absent statistics are
+null), so the two can be compared on the same flights.
+"""
+import json
+import math
+import resource
+import statistics
+import sys
+import time
+
+
+def rss_mb():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
+def peak_mb():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def main(argv):
+    n = int(argv[1])
+    dtype = argv[2] if len(argv) > 2 and not argv[2].startswith("--") else "float32"
+    frames = int(argv[argv.index("--frames") + 1]) if "--frames" in argv else 24
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+    import geomipmap
+
+    out = {"n": n, "dtype": dtype, "samples": n * n}
+    base_mb = rss_mb()
+    t = time.perf_counter()
+    src = geomipmap.vtkGeoMipMapFractalSource()
+    src.SetDimensions(n, n)
+    src.SetSpacing(30.0)
+    src.SetSeed(1)
+    src.Update()
+    image = src.GetOutput()
+    if dtype == "int16":
+        z = vtk_to_numpy(image.GetPointData().GetScalars())
+        zi = np.empty(z.shape, np.int16)
+        band = 1 << 22
+        for k in range(0, z.size, band):
+            zi[k:k + band] = np.round(z[k:k + band])
+        img = vtkImageData()
+        img.SetDimensions(n, n, 1)
+        img.SetSpacing(30.0, 30.0, 1.0)
+        a = numpy_to_vtk(zi, deep=False)
+        a.SetName("Elevation")
+        img.GetPointData().SetScalars(a)
+        img._keep = zi
+        del z
+        src = None
+        image = img
+    out["generate_s"] = time.perf_counter() - t
+    out["rss_after_input_mb"] = rss_mb()
+
+    mapper = geomipmap.vtkGeoMipMapMapper()
+    mapper.SetInputData(image)
+    mapper.SetPixelError(1.0)
+    mapper.SetScalarRange(0.0, 1500.0)
+    if "--no-color" in argv:
+        mapper.ScalarVisibilityOff()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    if "--no-lighting" in argv:
+        actor.GetProperty().LightingOff()
+    ren = vtkRenderer()
+    ren.AddActor(actor)
+    win = vtkRenderWindow()
+    win.SetOffScreenRendering(1)
+    win.SetSize(1280, 720)
+    win.AddRenderer(ren)
+    extent = (n - 1) * 30.0
+    c = 0.5 * extent
+    cam = ren.GetActiveCamera()
+    cam.SetViewAngle(50.0)
+    cam.SetViewUp(0, 0, 1)
+
+    def place(f):
+        a = 2 * math.pi * f / max(frames, 1)
+        r, alt = 0.35 * extent, 1500.0 + 0.04 * extent
+        x, y = c + r * math.cos(a), c + r * math.sin(a)
+        ahead = a + 0.5 * math.pi + math.radians(20)  # counter-clockwise, a little inwards
+        d = min(0.1 * extent, 2000.0) + 100.0
+        cam.SetPosition(x, y, alt)
+        cam.SetFocalPoint(x + d * math.cos(ahead), y + d * math.sin(ahead),
+                          alt - d * math.tan(math.radians(15)))
+        ren.ResetCameraClippingRange()
+
+    place(0)
+    t = time.perf_counter()
+    win.Render()
+    win.WaitForCompletion()
+    out["first_frame_s"] = time.perf_counter() - t
+    for key, name in (("terrain_build_s", "GetLastTerrainBuildTime"),
+                      ("height_upload_s", "GetLastHeightUploadTime"),
+                      ("gpu_bytes", "GetGPUMemoryBytes")):
+        out[key] = getattr(mapper, name)() if hasattr(mapper, name) else None
+    out["rss_after_first_frame_mb"] = rss_mb()
+    times, tris = [], []
+    for f in range(frames):
+        place(f)
+        t = time.perf_counter()
+        win.Render()
+        win.WaitForCompletion()
+        times.append((time.perf_counter() - t) * 1000.0)
+        tris.append(mapper.GetNumberOfRenderedTriangles())
+    out["frame_ms_median"] = statistics.median(times)
+    out["frame_ms_mean"] = statistics.mean(times)
+    out["lod_ms_last"] = mapper.GetLastUpdateTime() * 1000.0
+    out["triangles_mean"] = statistics.mean(tris)
+    out["peak_rss_mb"] = peak_mb()
+    out["process_base_mb"] = base_mb
+    out["bytes_per_sample_peak"] = out["peak_rss_mb"] * 1048576.0 / (n * n)
+    print(json.dumps(out))
+    win.Finalize()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
