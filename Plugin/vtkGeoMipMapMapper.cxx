@@ -124,11 +124,13 @@ struct vtkGeoMipMapMapper::Internals
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
   vtkGeoMipMapTileLayout Layout;
   vtkGeoMipMapSampleTexture Heights;
+  vtkGeoMipMapSampleTexture Slopes; // for the fragment normals, while lit
   vtkGeoMipMapSampleTexture Colors; // a second colouring array (scalars or RGBA)
   vtkGeoMipMapColorTable Table;
   vtkGeoMipMapShaders::Options Shading;
   std::map<const vtkOpenGLHelper*, std::string> ShaderKeys; // per helper: key built for
-  int HeightsUnit = -1, ColorsUnit = -1, TableUnit = -1;
+  int HeightsUnit = -1, SlopesUnit = -1, ColorsUnit = -1, TableUnit = -1;
+  bool Lit = false;
   bool ReportedCellScalars = false;
 
   // Model coordinates are relative to the anchor sample (near the camera) and a reference
@@ -259,7 +261,8 @@ vtkTypeInt64 vtkGeoMipMapMapper::GetGPUMemoryBytes() const
 {
   const Internals& in = *this->Internal;
   return static_cast<vtkTypeInt64>(
-    in.Heights.GetBytes() + in.Colors.GetBytes() + in.Table.GetBytes() + in.IndexBytes);
+    in.Heights.GetBytes() + in.Slopes.GetBytes() + in.Colors.GetBytes() + in.Table.GetBytes() +
+    in.IndexBytes);
 }
 
 //------------------------------------------------------------------------------
@@ -273,7 +276,9 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   {
     const double samples = static_cast<double>(image->GetNumberOfPoints());
     const auto format = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
-    double need = samples * vtkGeoMipMapSampleTexture::BytesPerTexel(format);
+    // Heights and slopes (for lighting) on the GPU.
+    double need = samples * (vtkGeoMipMapSampleTexture::BytesPerTexel(format) +
+                              vtkGeoMipMapSampleTexture::BytesPerTexel(vtkGeoMipMapSampleTexture::Slopes16F));
     if (!(heights->GetDataType() == VTK_FLOAT && heights->GetNumberOfComponents() == 1))
     {
       need += samples * sizeof(float);
@@ -521,7 +526,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
-bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData* image, vtkActor*)
+bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData* image, vtkActor* act)
 {
   Internals& in = *this->Internal;
   const gmm::Heightfield& hf = in.Engine.heightfield();
@@ -541,6 +546,15 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
     err = in.Heights.Upload(win, heights, heightFormat, in.Layout);
     this->LastHeightUploadTime = SecondsSince(start);
     ++this->NumberOfHeightUploads;
+  }
+  // Slopes for the fragment normals, only while lit (made from the engine's float heights).
+  in.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
+  if (err.empty() && in.Lit &&
+    !in.Slopes.IsCurrent(heights, vtkGeoMipMapSampleTexture::Slopes16F, in.Layout))
+  {
+    const auto start = Clock::now();
+    err = in.Slopes.UploadSlopes(win, hf.heights(), hf.dx, hf.dy, heights, in.Layout);
+    this->LastHeightUploadTime += SecondsSince(start);
   }
   if (!err.empty())
   {
@@ -685,6 +699,7 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     return;
   }
   in.HeightsUnit = in.Heights.Activate();
+  in.SlopesUnit = in.Lit && in.Slopes.HasData() ? in.Slopes.Activate() : -1;
   in.ColorsUnit = in.Shading.Color == vtkGeoMipMapShaders::Options::MapScalars ||
       in.Shading.Color == vtkGeoMipMapShaders::Options::DirectColors
     ? in.Colors.Activate()
@@ -718,6 +733,10 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   if (in.ColorsUnit >= 0)
   {
     in.Colors.Deactivate();
+  }
+  if (in.SlopesUnit >= 0)
+  {
+    in.Slopes.Deactivate();
   }
   in.Heights.Deactivate();
 }
@@ -765,6 +784,7 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
       p->SetUniformf(name, static_cast<float>(v));
   };
   seti("gmmHeights", in.HeightsUnit);
+  seti("gmmSlopes", in.SlopesUnit);
   set2i("gmmGridSize", hf.nx, hf.ny);
   set2i("gmmTileSize", in.Layout.tileW, in.Layout.tileH);
   seti("gmmTilesX", in.Layout.tilesX);
@@ -863,6 +883,7 @@ void vtkGeoMipMapMapper::ReleaseWindowResources()
   }
   win->PushContext();
   in.Heights.Release(win);
+  in.Slopes.Release(win);
   in.Colors.Release(win);
   in.Table.Release(win);
   // What vtkOpenGLPolyDataMapper::ReleaseGraphicsResources frees, which it only does

@@ -49,13 +49,12 @@ std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
   return s;
 }
 
-// The fragment's level-0 quad (Tessellate.h's split along its (0,0)-(1,1) diagonal):
-// corner heights, fetched once for both the normal and the colour, and the weights of the
-// triangle under the fragment on the corners (one of them 0).
+// The fragment's level-0 quad (Tessellate.h's split along its (0,0)-(1,1) diagonal) and
+// the weights of the triangle under the fragment on its corners (one of them 0).
 const char* const kQuad =
   "in vec2 gmmGridVSOutput;\n"
   "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n"
-  "struct GmmQuad { ivec2 c; float h00, h10, h01, h11; vec4 w; }; // w: 00, 10, 01, 11\n"
+  "struct GmmQuad { ivec2 c; vec4 w; }; // w: corners 00, 10, 01, 11\n"
   "GmmQuad gmmQuad(vec2 g)\n"
   "{\n"
   "  GmmQuad q;\n"
@@ -63,47 +62,23 @@ const char* const kQuad =
   "  q.c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
   "  vec2 f = gc - vec2(q.c);\n"
   "  q.w = f.x >= f.y ? vec4(1.0 - f.x, f.x - f.y, 0.0, f.y) : vec4(1.0 - f.y, 0.0, f.y - f.x, f.x);\n"
-  "  q.h00 = gmmHeight(q.c);\n"
-  "  q.h10 = gmmHeight(q.c + ivec2(1, 0));\n"
-  "  q.h01 = gmmHeight(q.c + ivec2(0, 1));\n"
-  "  q.h11 = gmmHeight(q.c + ivec2(1, 1));\n"
   "  return q;\n"
   "}\n";
 
-// Central differences as vtkGeoMipMapConversion::SampleNormal computes them, at the four
-// corners of the quad from the corners and their eight outer neighbours (12 fetches), then
-// interpolated with the triangle's weights as the full-resolution mesh interpolates.
+// Normals from the slope texture (central differences as vtkGeoMipMapConversion::
+// SampleNormal computes them, made once at upload), interpolated with the triangle's
+// weights as the full-resolution mesh interpolates its vertex normals.
 const char* const kNormal =
-  "float gmmOuter(ivec2 ij)\n"
+  "uniform highp sampler2DArray gmmSlopes;\n"
+  "vec3 gmmSampleNormal(ivec2 ij)\n"
   "{\n"
-  "  bool inside = ij.x >= 0 && ij.y >= 0 && ij.x < gmmGridSize.x && ij.y < gmmGridSize.y;\n"
-  "  return inside ? gmmHeight(ij) : 3.0e38; // outside: no sample (gmmValid is false)\n"
-  "}\n"
-  "float gmmSlope(float ha, float hc, float hb, float step)\n"
-  "{\n"
-  "  bool a = gmmValid(ha), b = gmmValid(hb), c = gmmValid(hc);\n"
-  "  if (a && b) { return (hb - ha) / (2.0 * step); }\n"
-  "  if (b && c) { return (hb - hc) / step; }\n"
-  "  if (a && c) { return (hc - ha) / step; }\n"
-  "  return 0.0;\n"
-  "}\n"
-  "vec3 gmmCornerNormal(float w, float c, float e, float s, float n)\n"
-  "{\n"
-  "  float gx = gmmHeightScale * gmmSlope(w, c, e, gmmSpacing.x);\n"
-  "  float gy = gmmHeightScale * gmmSlope(s, c, n, gmmSpacing.y);\n"
-  "  return normalize(vec3(-gx, -gy, 1.0));\n"
+  "  vec2 g = gmmHeightScale * texelFetch(gmmSlopes, gmmTexel(ij), 0).rg;\n"
+  "  return normalize(vec3(-g, 1.0));\n"
   "}\n"
   "vec3 gmmNormalMC(GmmQuad q)\n"
   "{\n"
-  "  ivec2 c = q.c;\n"
-  "  float hm0 = gmmOuter(c + ivec2(-1, 0)), h0m = gmmOuter(c + ivec2(0, -1));\n"
-  "  float h20 = gmmOuter(c + ivec2(2, 0)), h1m = gmmOuter(c + ivec2(1, -1));\n"
-  "  float hm1 = gmmOuter(c + ivec2(-1, 1)), h02 = gmmOuter(c + ivec2(0, 2));\n"
-  "  float h21 = gmmOuter(c + ivec2(2, 1)), h12 = gmmOuter(c + ivec2(1, 2));\n"
-  "  return q.w.x * gmmCornerNormal(hm0, q.h00, q.h10, h0m, q.h01) +\n"
-  "    q.w.y * gmmCornerNormal(q.h00, q.h10, h20, h1m, q.h11) +\n"
-  "    q.w.z * gmmCornerNormal(hm1, q.h01, q.h11, q.h00, h02) +\n"
-  "    q.w.w * gmmCornerNormal(q.h01, q.h11, h21, q.h10, h12);\n"
+  "  return q.w.x * gmmSampleNormal(q.c) + q.w.y * gmmSampleNormal(q.c + ivec2(1, 0)) +\n"
+  "    q.w.z * gmmSampleNormal(q.c + ivec2(0, 1)) + q.w.w * gmmSampleNormal(q.c + ivec2(1, 1));\n"
   "}\n";
 
 // Lookup-table colours: texel 0 below range, 1..n the bins, n + 1 above, n + 2 NaN.
@@ -133,7 +108,9 @@ std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
       return std::string(kColorTable) +
         "vec4 gmmColor(GmmQuad q)\n"
         "{\n"
-        "  return gmmMapScalar(dot(q.w, vec4(q.h00, q.h10, q.h01, q.h11)));\n"
+        "  vec4 h = vec4(gmmHeight(q.c), gmmHeight(q.c + ivec2(1, 0)), gmmHeight(q.c + ivec2(0, 1)),\n"
+        "    gmmHeight(q.c + ivec2(1, 1)));\n"
+        "  return gmmMapScalar(dot(q.w, h));\n"
         "}\n";
     case O::MapScalars:
       return std::string(kColorTable) +

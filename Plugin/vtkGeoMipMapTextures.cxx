@@ -33,6 +33,8 @@ GLFormat GLFormatOf(vtkGeoMipMapSampleTexture::Format f)
       return { GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT };
     case vtkGeoMipMapSampleTexture::RGBA8:
       return { GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE };
+    case vtkGeoMipMapSampleTexture::Slopes16F:
+      return { GL_RG16F, GL_RG, GL_FLOAT }; // uploaded as floats, stored as halves
     default:
       return { GL_R32F, GL_RED, GL_FLOAT };
   }
@@ -143,7 +145,7 @@ vtkGeoMipMapSampleTexture::Format vtkGeoMipMapSampleTexture::FormatFor(vtkDataAr
 
 size_t vtkGeoMipMapSampleTexture::BytesPerTexel(Format f)
 {
-  return f == Int16 || f == UInt16 ? 2 : 4;
+  return f == Int16 || f == UInt16 ? 2 : 4; // RG16F: 2 x 2 bytes
 }
 
 vtkGeoMipMapSampleTexture::vtkGeoMipMapSampleTexture() = default;
@@ -159,6 +161,78 @@ bool vtkGeoMipMapSampleTexture::IsCurrent(
 //------------------------------------------------------------------------------
 std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDataArray* array,
   Format format, const vtkGeoMipMapTileLayout& layout)
+{
+  const bool direct = UploadsDirectly(array, format);
+  const unsigned char* base = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+  const size_t texel = BytesPerTexel(format);
+  std::string err = this->UploadTiles(win, format, layout,
+    [&](int i0, int j0, int w, int h, const void*& pixels, int& rowLength,
+      std::vector<unsigned char>& scratch) {
+      if (direct)
+      {
+        // Straight from the input: rows of nx samples, starting at the tile's corner.
+        pixels = base + (static_cast<size_t>(j0) * layout.nx + i0) * texel;
+        rowLength = layout.nx;
+        return;
+      }
+      ConvertTile(array, format, layout.nx, i0, j0, w, h, scratch);
+      pixels = scratch.data();
+      rowLength = w;
+    });
+  if (err.empty())
+  {
+    this->Source = array;
+    this->SourceTime = array->GetMTime();
+  }
+  return err;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win, const float* z,
+  double dx, double dy, vtkDataArray* source, const vtkGeoMipMapTileLayout& layout)
+{
+  const int nx = layout.nx, ny = layout.ny;
+  // Slope along one axis at sample k, neighbours a (before) and b (after) when present.
+  auto slope = [z](size_t k, bool hasA, size_t a, bool hasB, size_t b, double step) {
+    const bool okA = hasA && !std::isnan(z[a]), okB = hasB && !std::isnan(z[b]);
+    const bool okC = !std::isnan(z[k]);
+    if (okA && okB)
+      return (static_cast<double>(z[b]) - z[a]) / (2.0 * step);
+    if (okB && okC)
+      return (static_cast<double>(z[b]) - z[k]) / step;
+    if (okA && okC)
+      return (static_cast<double>(z[k]) - z[a]) / step;
+    return 0.0;
+  };
+  std::string err = this->UploadTiles(win, Slopes16F, layout,
+    [&](int i0, int j0, int w, int h, const void*& pixels, int& rowLength,
+      std::vector<unsigned char>& scratch) {
+      scratch.resize(static_cast<size_t>(w) * h * 2 * sizeof(float));
+      float* out = reinterpret_cast<float*>(scratch.data());
+      for (int j = j0; j < j0 + h; ++j)
+      {
+        for (int i = i0; i < i0 + w; ++i)
+        {
+          const size_t k = static_cast<size_t>(j) * nx + i;
+          float* t = out + 2 * ((static_cast<size_t>(j - j0)) * w + (i - i0));
+          t[0] = static_cast<float>(slope(k, i > 0, k - 1, i + 1 < nx, k + 1, dx));
+          t[1] = static_cast<float>(slope(k, j > 0, k - nx, j + 1 < ny, k + nx, dy));
+        }
+      }
+      pixels = scratch.data();
+      rowLength = w;
+    });
+  if (err.empty())
+  {
+    this->Source = source;
+    this->SourceTime = source->GetMTime();
+  }
+  return err;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGeoMipMapSampleTexture::UploadTiles(vtkOpenGLRenderWindow* win, Format format,
+  const vtkGeoMipMapTileLayout& layout, const TileSource& source)
 {
   this->Release(win);
   const GLFormat gl = GLFormatOf(format);
@@ -178,8 +252,6 @@ std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDat
   GLenum err = glGetError();
   if (err == GL_NO_ERROR)
   {
-    const bool direct = UploadsDirectly(array, format);
-    const unsigned char* base = static_cast<const unsigned char*>(array->GetVoidPointer(0));
     std::vector<unsigned char> scratch;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int ty = 0; ty < layout.tilesY && err == GL_NO_ERROR; ++ty)
@@ -189,18 +261,9 @@ std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDat
         const int i0 = tx * layout.tileW, j0 = ty * layout.tileH;
         const int w = std::min(layout.tileW, layout.nx - i0), h = std::min(layout.tileH, layout.ny - j0);
         const void* pixels = nullptr;
-        if (direct)
-        {
-          // Straight from the input: rows of nx samples, starting at the tile's corner.
-          glPixelStorei(GL_UNPACK_ROW_LENGTH, layout.nx);
-          pixels = base + (static_cast<size_t>(j0) * layout.nx + i0) * texel;
-        }
-        else
-        {
-          glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-          ConvertTile(array, format, layout.nx, i0, j0, w, h, scratch);
-          pixels = scratch.data();
-        }
+        int rowLength = w;
+        source(i0, j0, w, h, pixels, rowLength, scratch);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength == w ? 0 : rowLength);
         glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, ty * layout.tilesX + tx, w, h, 1, gl.format,
           gl.type, pixels);
         err = glGetError();
@@ -223,8 +286,6 @@ std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDat
   }
   this->Stored = format;
   this->Bytes = static_cast<size_t>(layout.Layers()) * layout.tileW * layout.tileH * texel;
-  this->Source = array;
-  this->SourceTime = array->GetMTime();
   this->Layout = layout;
   return std::string();
 }

@@ -11,8 +11,9 @@
  * copy for float and 16-bit data), so tiles can later be made resident one at a time.
  *
  * Storage: float heights as R32F, 16-bit integer heights as R16I / R16UI (converted to
- * metres in the shader), other scalar types as R32F (converted tile by tile), and
- * unsigned char RGB(A) colours as RGBA8.
+ * metres in the shader), other scalar types as R32F (converted tile by tile), unsigned
+ * char RGB(A) colours as RGBA8, and the heights' slopes as RG16F (computed tile by tile:
+ * the fragment shader's normals, 4 fetches instead of 12 height fetches).
  *
  * vtkGeoMipMapColorTable holds a lookup table as a 1D row of colours for the shader.
  *
@@ -26,7 +27,9 @@
 #include "vtkType.h"
 
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <vector>
 
 class vtkDataArray;
 class vtkOpenGLRenderWindow;
@@ -63,7 +66,8 @@ public:
     Float32,
     Int16,
     UInt16,
-    RGBA8
+    RGBA8,
+    Slopes16F // two half floats per sample (dh/dx, dh/dy), computed by UploadSlopes
   };
 
   /**
@@ -83,6 +87,15 @@ public:
   std::string Upload(vtkOpenGLRenderWindow* win, vtkDataArray* array, Format format,
     const vtkGeoMipMapTileLayout& layout);
 
+  /**
+   * Uploads the slopes of the heights `z` (nx * ny floats, NaN = nodata, spacing dx, dy)
+   * as Slopes16F: dh/dx and dh/dy by central differences, one-sided next to the border or
+   * nodata, 0 where neither neighbour is valid (vtkGeoMipMapConversion::SampleNormal's
+   * rule). `source` / `sourceTime` identify the heights for IsCurrent.
+   */
+  std::string UploadSlopes(vtkOpenGLRenderWindow* win, const float* z, double dx, double dy,
+    vtkDataArray* source, const vtkGeoMipMapTileLayout& layout);
+
   bool IsCurrent(vtkDataArray* array, Format format, const vtkGeoMipMapTileLayout& layout) const;
   bool HasData() const { return this->Handle != 0; }
   Format GetFormat() const { return this->Stored; }
@@ -98,6 +111,13 @@ public:
 private:
   vtkGeoMipMapSampleTexture(const vtkGeoMipMapSampleTexture&) = delete;
   void operator=(const vtkGeoMipMapSampleTexture&) = delete;
+
+  // Fills the texels of one tile (i0, j0, w x h samples): either points `pixels` at data
+  // laid out with a row length of `rowLength` texels, or writes `scratch` (row length w).
+  using TileSource = std::function<void(int i0, int j0, int w, int h, const void*& pixels,
+    int& rowLength, std::vector<unsigned char>& scratch)>;
+  std::string UploadTiles(vtkOpenGLRenderWindow* win, Format format,
+    const vtkGeoMipMapTileLayout& layout, const TileSource& source);
 
   unsigned int Handle = 0;
   vtkNew<vtkTextureObject> Unit; // texture-unit bookkeeping of the window, around Handle

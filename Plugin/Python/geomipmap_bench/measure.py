@@ -4,6 +4,10 @@ Why here and not in the engine: the measured error must not share code with the 
 checks. geomipmap.vtkGeoMipMapScreenError (C++, no gmm code) rasterises any mesh over the
 full-resolution grid and projects true and drawn points with the camera's own matrix.
 
+Shading check: the fraction of terrain pixels whose colour differs from the
+full-resolution rendering (brute force, lit with the same central-difference normals and
+coloured per fragment) by more than 24 grey levels in some channel.
+
 Depth check: a pixel "differs by more than one depth step" from the full-resolution
 rendering when |z - z_ref| exceeds the largest |z_ref(p) - z_ref(q)| over its 8
 neighbours q (what shifting the reference image by one pixel could cause) plus one 24-bit
@@ -14,7 +18,7 @@ import time
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkFloatArray
+from vtkmodules.vtkCommonCore import vtkFloatArray, vtkUnsignedCharArray
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 
 DEPTH_QUANTUM = 2.0 ** -24
@@ -64,6 +68,8 @@ class Bench:
         m.SetScalarRange(ours.GetScalarRange())
         m.SetColorModeToMapScalars()
         m.ScalarVisibilityOn()
+        # Map each fragment's interpolated height, as the GeoMipMap mapper does.
+        m.InterpolateScalarsBeforeMappingOn()
         a = vtkActor()
         a.SetMapper(m)
         a.SetProperty(self.scene.actor.GetProperty())
@@ -76,6 +82,12 @@ class Bench:
         self.scene.window.GetZbufferData(0, 0, w - 1, h - 1, buf)
         return vtk_to_numpy(buf).reshape(h, w).copy()
 
+    def pixels(self):
+        w, h = self.size
+        buf = vtkUnsignedCharArray()
+        self.scene.window.GetPixelData(0, 0, w - 1, h - 1, 0, buf, 0)
+        return vtk_to_numpy(buf).reshape(h, w, 3).copy()
+
     def render(self):
         """Render() then WaitForCompletion() (glFinish): milliseconds of wall time."""
         w = self.scene.window
@@ -85,11 +97,11 @@ class Bench:
         return (time.perf_counter() - t0) * 1000.0
 
     def frame(self, actor, mesh_for_frame, f, reference, extra=None):
-        """Render frame f with only `actor` shown; return (row, depth buffer).
+        """Render frame f with only `actor` shown; return (row, (depth buffer, pixels)).
 
         mesh_for_frame(f) -> the vtkPolyData drawn (for the measured error); extra(row)
         adds method-specific columns (ours: LOD and index upload times); reference: the
-        full-resolution depth buffer of this frame, or None.
+        full-resolution (depth buffer, pixels) of this frame, or None.
         """
         self.show(actor)
         self.camera(f)
@@ -98,11 +110,13 @@ class Bench:
                "render_ms": total}
         if extra:
             extra(row)
-        z = self.depth()
-        row["depth_bad_frac"] = (depth_mismatch(reference, z) if reference is not None
+        z, rgb = self.depth(), self.pixels()
+        row["depth_bad_frac"] = (depth_mismatch(reference[0], z) if reference is not None
                                  else float("nan"))
+        row["shade_diff_frac"] = (shading_mismatch(reference, z, rgb) if reference is not None
+                                  else float("nan"))
         row.update(self.measure(mesh_for_frame(f)))
-        return row, z
+        return row, (z, rgb)
 
     def measure(self, mesh):
         cam = self.scene.renderer.GetActiveCamera()
@@ -124,6 +138,20 @@ class Bench:
         self.filter.Modified()
         self.filter.Update()
         return self.filter.GetOutput()
+
+
+SHADE_TOLERANCE = 24  # grey levels, largest channel difference
+
+
+def shading_mismatch(reference, z, rgb):
+    """Fraction of the terrain's pixels (terrain in either picture) whose colour differs
+    from the full-resolution rendering by more than SHADE_TOLERANCE in some channel."""
+    ref_z, ref_rgb = reference
+    terrain = (ref_z < 1.0) | (z < 1.0)
+    if not terrain.any():
+        return 0.0
+    diff = np.abs(rgb.astype(np.int16) - ref_rgb.astype(np.int16)).max(axis=2)
+    return float((diff[terrain] > SHADE_TOLERANCE).mean())
 
 
 def depth_mismatch(ref, z):

@@ -13,7 +13,7 @@ import numpy as np
 
 COLUMNS = ("dem", "nx", "ny", "method", "tau", "build_s", "frame", "lod_ms", "upload_ms",
            "render_ms", "total_ms", "triangles", "err_max_px", "err_p99_px", "err_mean_px",
-           "samples_in_view", "uncovered", "depth_bad_frac", "certified_px")
+           "samples_in_view", "uncovered", "depth_bad_frac", "shade_diff_frac", "certified_px")
 
 
 class Output:
@@ -110,7 +110,11 @@ def summarise(rows):
              "err_max": max(col("err_max_px")), "err_p99": max(col("err_p99_px")),
              "err_mean": float(np.mean(col("err_mean_px"))),
              "uncovered": float(np.mean(col("uncovered"))),
-             "depth": float(np.mean(col("depth_bad_frac")))}
+             "depth": float(np.mean(col("depth_bad_frac"))),
+             "shade": (float(np.mean(col("shade_diff_frac")))
+                       if all(r.get("shade_diff_frac", "") != "" for r in rs) else float("nan")),
+             "shade_max": (max(col("shade_diff_frac"))
+                           if all(r.get("shade_diff_frac", "") != "" for r in rs) else float("nan"))}
         for name in ("total_ms", "lod_ms", "upload_ms", "render_ms"):
             g[name] = _stats(col(name))
         g["within_tau"] = (all(e <= float(tau) for e in col("err_max_px")) if tau != "" else None)
@@ -150,15 +154,17 @@ def markdown(groups, metas):
               "measured (vtkGeoMipMapScreenError): max and p99 are the worst frame's, mean "
               "is over frames. 'uncovered': in-view samples without a triangle above or "
               "below (mean per frame). 'depth diff': pixels whose depth differs from the "
-              "full-resolution rendering by more than one depth step (mean per frame).", ""]
+              "full-resolution rendering by more than one depth step (mean per frame). "
+              "'shading diff': terrain pixels whose colour differs from the "
+              "full-resolution rendering by more than 24 levels (mean and worst frame).", ""]
     skips = [tuple(s) for m in metas for s in m["skips"]]
     notes = [tuple(n) for m in metas for n in m["notes"]]
     for dem in dict.fromkeys(g["dem"] for g in groups):
         lines += [f"## {dem}", "",
                   "| method | tau | triangles | build s | frame ms mean / median / p95 | "
                   "LOD ms | upload ms | render ms | x brute | err max px | p99 | mean | "
-                  "uncovered | depth diff % |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "uncovered | depth diff % | shading diff % mean / max |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for g in (g for g in groups if g["dem"] == dem):
             t = g["total_ms"]
             lines.append(
@@ -166,7 +172,8 @@ def markdown(groups, metas):
                 f"{t[0]:.1f} / {t[1]:.1f} / {t[2]:.1f} | {g['lod_ms'][0]:.2f} | "
                 f"{g['upload_ms'][0]:.2f} | {g['render_ms'][0]:.1f} | {_f(g['speedup'], 1)} | "
                 f"{g['err_max']:.3f} | {g['err_p99']:.3f} | {g['err_mean']:.4f} | "
-                f"{g['uncovered']:.0f} | {_f(100 * g['depth'], 2)} |")
+                f"{g['uncovered']:.0f} | {_f(100 * g['depth'], 2)} | "
+                f"{_f(100 * g['shade'], 2)} / {_f(100 * g['shade_max'], 2)} |")
         dom, losses = pareto(groups, dem)
         lines += ["", f"Pareto (for every greedy / uniform / quadric point, an ours point with <= "
                   f"measured max error and lower median frame time; brute force, 0 px, is "

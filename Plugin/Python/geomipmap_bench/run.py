@@ -174,9 +174,9 @@ def _fly(label, args, configs, bench, heights, out):
         for c in configs:
             if c.before:
                 c.before()
-            row, depth = bench.frame(c.actor, c.mesh, f, reference, c.extra)
+            row, shot = bench.frame(c.actor, c.mesh, f, reference, c.extra)
             if c.method == "brute":
-                reference = depth
+                reference = shot
             out.frame(ctx, c.method, c.tau, c.build_s, row)
         out.flush()
         print(f"[{label}] frame {f + 1}/{args.frames}", flush=True)
