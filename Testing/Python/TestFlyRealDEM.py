@@ -1,8 +1,8 @@
 """geomipmap-fly over a real DEM with geographic (lon, lat, agl) waypoints.
 
 Uses mt_rainier_90m.tif (SRTM3 N46W122, EPSG:4326, voids) from the shared data folder
-($GEOMIPMAP_DATA_DIR, default ../shared/data next to the repository); skips (exit 77)
-when it is absent. Checks: exit 0, 10 CSV rows, certified error <= tau on every frame,
+(gmmdata.py: $GEOMIPMAP_DATA_DIR, else ../shared/data beside the source tree); skips
+(exit 77) when it is absent, or fails when GEOMIPMAP_REQUIRE_DATA=1. Checks: exit 0, 10 CSV rows, certified error <= tau on every frame,
 frames showing terrain; the lon/lat -> local metre conversion against GeographicLib's
 geodesic distances; JSON waypoints with absolute altitudes; a waypoint outside the tile.
 """
@@ -10,18 +10,12 @@ geodesic distances; JSON waypoints with absolute altitudes; a waypoint outside t
 import glob
 import json
 import os
-import sys
 
-from flytestutil import SKIP, check, png_stats, read_csv, run, setup
+from flytestutil import check, png_stats, read_csv, run, setup
+from gmmdata import data_file
 
 exe, out = setup()
-here = os.path.dirname(os.path.abspath(__file__))
-data = (os.environ.get("GEOMIPMAP_DATA_DIR") or os.environ.get("GEOMIPMAP_DATA")
-        or os.path.join(here, "..", "..", "..", "shared", "data"))
-dem = os.path.join(data, "mt_rainier_90m.tif")
-if not os.path.isfile(dem):
-    print(f"SKIP: {dem} not found (set GEOMIPMAP_DATA_DIR to the shared data folder)")
-    sys.exit(SKIP)
+dem = data_file("mt_rainier_90m.tif")
 
 # The tile spans lon -122 .. -121, lat 46 .. 47; Mount Rainier's summit is near
 # (-121.760, 46.853). A flight from the south-west past the summit, 700 m above ground.

@@ -5,14 +5,13 @@ import subprocess
 import sys
 import tempfile
 
+from gmmdata import data_file
+
 here = os.path.dirname(os.path.abspath(__file__))
 readme = open(os.path.join(here, "..", "..", "README.md")).read()
 section = readme.split("## Python API", 1)[1]
 code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
-dem = os.path.join(os.environ.get("GEOMIPMAP_DATA", ""), "N42E001.hgt")
-if not os.path.exists(dem):
-    print("SKIP: %s not found (set GEOMIPMAP_DATA to ../shared/data)" % dem)
-    sys.exit(77)
+dem = data_file("N42E001.hgt")
 with tempfile.TemporaryDirectory() as tmp:
     script = os.path.join(tmp, "example.py")
     open(script, "w").write(code)

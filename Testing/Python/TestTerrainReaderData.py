@@ -16,7 +16,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from geomipmap import vtkGeoMipMapTerrainReader
-from gmmtestutil import ErrorCatcher, check, data_dir_or_skip, update
+from gmmtestutil import ErrorCatcher, check, data_file, update
 
 A, F = 6378137.0, 1.0 / 298.257223563
 E2 = F * (2 - F)
@@ -77,8 +77,7 @@ def nodata_count(z):
 
 
 case = sys.argv[1]
-d = data_dir_or_skip()
-p = lambda name: d + "/" + name
+p = data_file  # skips (or fails under GEOMIPMAP_REQUIRE_DATA=1) when the file is missing
 
 if case == "SainteHelens":
     img, z, meta = read(p("SainteHelens.dem"))

@@ -1,23 +1,11 @@
 """Helpers of the geomipmap Python tests: data folder, skipping, error capture, memory."""
-import os
 import resource
-import sys
 
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
-SKIP = 77  # CTest SKIP_RETURN_CODE
-
-
-def data_dir_or_skip():
-    """The real-DEM folder (GEOMIPMAP_DATA, else ../shared/data); exits 77 when absent."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    d = os.environ.get("GEOMIPMAP_DATA") or os.path.join(here, "..", "..", "..", "shared", "data")
-    if not os.path.isdir(d):
-        print("SKIP: data folder %s is absent (set GEOMIPMAP_DATA)" % d)
-        sys.exit(SKIP)
-    return d
+from gmmdata import SKIP, data_dir_or_skip, data_file  # noqa: F401 (the one data rule)
 
 
 class ErrorCatcher:
