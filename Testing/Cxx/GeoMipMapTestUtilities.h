@@ -4,10 +4,17 @@
 #define GeoMipMapTestUtilities_h
 
 #include "SyntheticTerrain.h"
+#include "vtkGeoMipMapFilter.h"
+#include "vtkGeoMipMapMapper.h"
+#include "vtkGeoMipMapScreenError.h"
 
+#include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -168,6 +175,148 @@ inline vtkSmartPointer<vtkImageData> Checkerboard(
     }
   }
   return img;
+}
+
+// ---------------------------------------------------------------------------------------
+// The measured screen-space error of what vtkGeoMipMapMapper drew, independent of the
+// engine's own bound: vtkGeoMipMapFilter with the same camera, viewport, tau and block size
+// gives the mapper's triangles (TestGeoMipMapFilterAgreement; the triangle counts are
+// compared on every use), and vtkGeoMipMapScreenError (no engine code) measures them
+// against the full-resolution heightfield, projecting with the camera's own composite
+// matrix times the actor's: data -> world -> clip. Same as Testing/Python/gmmtestutil.py.
+
+// `cam` in the data coordinates of an actor whose matrix (data -> world) is `m` (nullptr:
+// identity), as the mapper sees it (vtkGeoMipMapConversion.h CameraToView): position,
+// focal point and view-up end point through the inverse matrix; clipping range and
+// parallel scale divided by the cube root of the determinant.
+inline vtkSmartPointer<vtkCamera> DataCamera(vtkCamera* cam, vtkMatrix4x4* m)
+{
+  auto out = vtkSmartPointer<vtkCamera>::New();
+  out->DeepCopy(cam);
+  if (!m)
+  {
+    return out;
+  }
+  vtkNew<vtkMatrix4x4> inv;
+  vtkMatrix4x4::Invert(m, inv);
+  auto point = [&inv](const double p[3], double q[3]) {
+    double in[4] = { p[0], p[1], p[2], 1.0 }, o[4];
+    inv->MultiplyPoint(in, o);
+    for (int k = 0; k < 3; ++k)
+    {
+      q[k] = o[k] / o[3];
+    }
+  };
+  double m3[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m3[r][c] = m->GetElement(r, c);
+    }
+  }
+  const double scale = std::cbrt(std::abs(vtkMath::Determinant3x3(m3)));
+  double pos[3], fp[3], upEnd[3], eye[3], focal[3], up[3];
+  cam->GetPosition(pos);
+  cam->GetFocalPoint(fp);
+  const double* vu = cam->GetViewUp();
+  for (int k = 0; k < 3; ++k)
+  {
+    upEnd[k] = pos[k] + vu[k];
+  }
+  point(pos, eye);
+  point(fp, focal);
+  point(upEnd, up);
+  out->SetPosition(eye);
+  out->SetFocalPoint(focal);
+  out->SetViewUp(up[0] - eye[0], up[1] - eye[1], up[2] - eye[2]);
+  out->SetParallelScale(cam->GetParallelScale() / scale);
+  const double* range = cam->GetClippingRange();
+  out->SetClippingRange(range[0] / scale, range[1] / scale);
+  return out;
+}
+
+struct MeasuredFrame
+{
+  vtkIdType Triangles = 0;   // of the filter's copy
+  double MaximumError = 0.0; // pixels, over the in-view samples
+  double Percentile99Error = 0.0;
+  vtkIdType InView = 0, Uncovered = 0;
+};
+
+// Measures the last frame `ren` drew of `actor` (a vtkGeoMipMapMapper over `image`). Call
+// it right after the render.
+inline MeasuredFrame MeasureDrawn(vtkImageData* image, vtkRenderer* ren, vtkActor* actor)
+{
+  auto* mapper = vtkGeoMipMapMapper::SafeDownCast(actor->GetMapper());
+  vtkMatrix4x4* m = actor->GetMatrix(); // also brings GetIsIdentity up to date
+  if (actor->GetIsIdentity())
+  {
+    m = nullptr;
+  }
+  const int* size = ren->GetSize();
+  vtkNew<vtkGeoMipMapFilter> filter;
+  filter->SetInputData(image);
+  filter->SetCamera(DataCamera(ren->GetActiveCamera(), m));
+  filter->SetViewportSize(size[0], size[1]);
+  filter->SetPixelError(mapper->GetPixelError());
+  filter->SetBlockSize(mapper->GetBlockSize());
+  filter->Update();
+  vtkNew<vtkMatrix4x4> clip;
+  clip->DeepCopy(
+    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  if (m)
+  {
+    vtkMatrix4x4::Multiply4x4(clip, m, clip); // data -> world -> clip
+  }
+  vtkNew<vtkGeoMipMapScreenError> error;
+  error->SetHeightfield(image);
+  error->SetMesh(filter->GetOutput());
+  error->SetViewportSize(size[0], size[1]);
+  error->SetProjectionMatrix(clip);
+  MeasuredFrame r;
+  r.Triangles = filter->GetOutput()->GetNumberOfPolys();
+  if (error->Compute())
+  {
+    r.MaximumError = error->GetMaximumError();
+    r.Percentile99Error = error->GetPercentile99Error();
+    r.InView = error->GetNumberOfSamplesInView();
+    r.Uncovered = error->GetNumberOfUncoveredSamples();
+  }
+  return r;
+}
+
+// True when the last frame of `actor` measures within the mapper's tau, the measured mesh
+// is the drawn one (same triangle count), something was in view and (unless allowed) every
+// in-view sample was covered. Prints what it measured, prefixed by `what`.
+inline bool DrawnWithinTau(
+  vtkImageData* image, vtkRenderer* ren, vtkActor* actor, const char* what, bool uncoveredOk = false)
+{
+  auto* mapper = vtkGeoMipMapMapper::SafeDownCast(actor->GetMapper());
+  const MeasuredFrame f = MeasureDrawn(image, ren, actor);
+  const double tau = mapper->GetPixelError();
+  const vtkIdType drawn = mapper->GetNumberOfRenderedTriangles();
+  std::cout << what << ": mapper " << drawn << " triangles, filter " << f.Triangles
+            << "; measured error " << f.MaximumError << " px (p99 " << f.Percentile99Error
+            << "), tau " << tau << "; " << f.InView << " samples in view, " << f.Uncovered
+            << " uncovered\n";
+  bool ok = true;
+  if (f.Triangles != drawn || drawn <= 0 || f.InView <= 0)
+  {
+    std::cout << "  FAIL: not the drawn mesh, or nothing drawn / in view\n";
+    ok = false;
+  }
+  if (!(f.MaximumError <= tau + 1e-6))
+  {
+    std::cout << "  FAIL: measured screen error above tau\n";
+    ok = false;
+  }
+  if (!uncoveredOk && f.Uncovered)
+  {
+    std::cout << "  FAIL: in-view samples not covered\n";
+    ok = false;
+  }
+  return ok;
 }
 
 // The window's current RGB pixels.

@@ -47,3 +47,118 @@ def check(cond, what):
     if not cond:
         raise AssertionError(what)
     print("ok:", what)
+
+
+# ---------------------------------------------------------------------------------------
+# The measured screen-space error of what vtkGeoMipMapMapper drew, independent of the
+# engine's own bound: vtkGeoMipMapFilter with the same camera, viewport, tau and block
+# size gives the mapper's triangles (TestGeoMipMapFilterAgreement; the triangle counts are
+# compared on every use), and vtkGeoMipMapScreenError (no engine code) measures them
+# against the full-resolution heightfield, projecting with the camera's own composite
+# matrix times the actor's: data -> world -> clip.
+
+def data_camera(cam, matrix):
+    """`cam` expressed in the data coordinates of an actor whose matrix (data -> world) is
+    `matrix` (None: identity), as the mapper sees it (vtkGeoMipMapConversion.h
+    CameraToView): position, focal point and view-up end point through the inverse matrix,
+    clipping range and parallel scale divided by the cube root of the determinant."""
+    from vtkmodules.vtkCommonMath import vtkMatrix4x4
+    from vtkmodules.vtkRenderingCore import vtkCamera
+
+    out = vtkCamera()
+    if matrix is None:
+        out.DeepCopy(cam)
+        return out
+    inv = vtkMatrix4x4()
+    vtkMatrix4x4.Invert(matrix, inv)
+
+    def point(p):
+        q = inv.MultiplyPoint((p[0], p[1], p[2], 1.0))
+        return (q[0] / q[3], q[1] / q[3], q[2] / q[3])
+
+    m = [[matrix.GetElement(r, c) for c in range(3)] for r in range(3)]
+    det = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+           - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+           + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    scale = abs(det) ** (1.0 / 3.0)
+    pos, fp, vu = cam.GetPosition(), cam.GetFocalPoint(), cam.GetViewUp()
+    eye = point(pos)
+    up_end = point(tuple(pos[k] + vu[k] for k in range(3)))
+    out.SetPosition(*eye)
+    out.SetFocalPoint(*point(fp))
+    out.SetViewUp(*(up_end[k] - eye[k] for k in range(3)))
+    out.SetViewAngle(cam.GetViewAngle())
+    out.SetUseHorizontalViewAngle(cam.GetUseHorizontalViewAngle())
+    out.SetParallelProjection(cam.GetParallelProjection())
+    out.SetParallelScale(cam.GetParallelScale() / scale)
+    near, far = cam.GetClippingRange()
+    out.SetClippingRange(near / scale, far / scale)
+    return out
+
+
+class Measured:
+    """What measure_drawn found: triangles (the filter's), error_px (the maximum over the
+    in-view samples), p99_px, in_view, uncovered (in-view samples no triangle covers)."""
+
+    def __init__(self, **kw):
+        self.__dict__.update(kw)
+
+    def __repr__(self):
+        return ("%d triangles, measured error %.4f px (p99 %.4f), %d samples in view, "
+                "%d uncovered" % (self.triangles, self.error_px, self.p99_px, self.in_view,
+                                  self.uncovered))
+
+
+def measure_drawn(image, ren, actor, tau, block_size):
+    """Measures the last frame `ren` drew of `actor` (a vtkGeoMipMapMapper over `image` with
+    this tau and block size): see the comment above. Call it right after the render."""
+    import geomipmap
+    from vtkmodules.vtkCommonMath import vtkMatrix4x4
+
+    matrix = actor.GetMatrix()  # also brings GetIsIdentity up to date
+    matrix = None if actor.GetIsIdentity() else matrix
+    w, h = ren.GetSize()
+    filt = geomipmap.vtkGeoMipMapFilter()
+    filt.SetInputData(image)
+    filt.SetCamera(data_camera(ren.GetActiveCamera(), matrix))
+    filt.SetViewportSize(w, h)
+    filt.SetPixelError(tau)
+    filt.SetBlockSize(block_size)
+    filt.Update()
+    mesh = filt.GetOutput()
+    clip = vtkMatrix4x4()
+    clip.DeepCopy(ren.GetActiveCamera().GetCompositeProjectionTransformMatrix(
+        ren.GetTiledAspectRatio(), -1, 1))
+    if matrix is not None:
+        vtkMatrix4x4.Multiply4x4(clip, matrix, clip)  # data -> world -> clip
+    err = geomipmap.vtkGeoMipMapScreenError()
+    err.SetHeightfield(image)
+    err.SetMesh(mesh)
+    err.SetViewportSize(w, h)
+    err.SetProjectionMatrix(clip)
+    if not err.Compute():
+        raise AssertionError("vtkGeoMipMapScreenError failed")
+    return Measured(triangles=mesh.GetNumberOfPolys(), error_px=err.GetMaximumError(),
+                    p99_px=err.GetPercentile99Error(), in_view=err.GetNumberOfSamplesInView(),
+                    uncovered=err.GetNumberOfUncoveredSamples())
+
+
+def check_drawn_within_tau(image, ren, actor, mapper, what="", uncovered_ok=False):
+    """Asserts (AssertionError) that the mapper's last frame measures within its tau and
+    that the measured mesh is the drawn one (same triangle count); returns the Measured."""
+    tau = mapper.GetPixelError()
+    m = measure_drawn(image, ren, actor, tau, mapper.GetBlockSize())
+    drawn = mapper.GetNumberOfRenderedTriangles()
+    print("%s: mapper %d triangles; %r; tau %g" % (what, drawn, m, tau))
+    if m.triangles != drawn:
+        raise AssertionError("%s: the filter gives %d triangles, the mapper drew %d: not the "
+                             "drawn mesh" % (what, m.triangles, drawn))
+    if m.in_view <= 0 or drawn <= 0:
+        raise AssertionError("%s: nothing in view (%d samples, %d triangles)"
+                             % (what, m.in_view, drawn))
+    if not m.error_px <= tau + 1e-6:
+        raise AssertionError("%s: measured screen error %.4f px > tau %g px"
+                             % (what, m.error_px, tau))
+    if not uncovered_ok and m.uncovered:
+        raise AssertionError("%s: %d in-view samples not covered" % (what, m.uncovered))
+    return m
