@@ -162,3 +162,47 @@ def check_drawn_within_tau(image, ren, actor, mapper, what="", uncovered_ok=Fals
     if not uncovered_ok and m.uncovered:
         raise AssertionError("%s: %d in-view samples not covered" % (what, m.uncovered))
     return m
+
+
+def resampling_mismatch(img, src, lon0, lat0, step_deg, nodes=20000, seed=5):
+    """How far a lon/lat raster read by vtkGeoMipMapTerrainReader is from its source.
+
+    src: the source heights (ny x nx, row 0 = south, NaN = nodata) on the lattice lon0 +
+    i * step_deg, lat0 + j * step_deg. At `nodes` random valid-or-void nodes inside the
+    lattice, the node's lon/lat (vtkGeoMipMapTerrainReader.LocalToGeographic) gives the
+    expected height, recomputed here from the source: bilinear in the 4 samples around it,
+    or the nearest sample when one of the 4 is nodata (the reader's documented rule).
+    Returns (nodes whose nodata-ness differs, largest height difference, nodes compared)."""
+    import random
+
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from geomipmap import vtkGeoMipMapTerrainReader as R
+
+    z = vtk_to_numpy(img.GetPointData().GetScalars())
+    gx = img.GetDimensions()[0]
+    (ox, oy), (dx, dy) = img.GetOrigin()[:2], img.GetSpacing()[:2]
+    sy, sx = src.shape
+    rng = random.Random(seed)
+    bad, worst, done, ll = 0, 0.0, 0, [0.0, 0.0]
+    while done < nodes:
+        k = rng.randrange(z.size)
+        R.LocalToGeographic(img, ox + k % gx * dx, oy + k // gx * dy, ll)
+        u, v = (ll[0] - lon0) / step_deg, (ll[1] - lat0) / step_deg
+        if not (1e-6 < u < sx - 1 - 1e-6 and 1e-6 < v < sy - 1 - 1e-6):
+            continue  # outside the lattice or on its edge
+        i, j = int(u), int(v)
+        tu, tv = u - i, v - j
+        q = src[j:j + 2, i:i + 2]
+        if np.isfinite(q).all():
+            want = (1 - tv) * ((1 - tu) * q[0, 0] + tu * q[0, 1]) + \
+                tv * ((1 - tu) * q[1, 0] + tu * q[1, 1])
+        else:
+            want = q[int(tv >= 0.5), int(tu >= 0.5)]
+        got = z[k]
+        if np.isnan(want) != np.isnan(got):
+            bad += 1
+        elif not np.isnan(want):
+            worst = max(worst, abs(float(got) - float(want)))
+        done += 1
+    return bad, worst, done
