@@ -29,7 +29,12 @@ struct TerrainRaster
   std::string heightUnit;
   bool geographic = false;
   bool georeferenced = true;     // false: a GDAL raster without geotransform (Spacing used)
-  double lon0 = 0.0, lat0 = 0.0; // geographic only: lon/lat of sample (0, 0)
+  // Geographic only (vtkGeoMipMapTerrainReader.h): the local transverse Mercator frame,
+  // whose origin (0, 0) is the source's south-west sample (lon0, lat0), and the source's
+  // sample steps in degrees. The result is resampled onto a regular grid in that frame.
+  double lon0 = 0.0, lat0 = 0.0;
+  double centralMeridian = 0.0;
+  double lonStep = 0.0, latStep = 0.0;
   std::vector<float> z;          // nx * ny, row j = northwards, NaN = nodata
 };
 
@@ -41,5 +46,12 @@ std::string readTerrainHeader(
 // Reads header and heights. progress(fraction) is called now and then.
 std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>& progress);
+
+// The local frame of geographic rasters: WGS84 transverse Mercator (scale 1 on the central
+// meridian), shifted so that (lon0, lat0) is (0, 0). Degrees and metres.
+void geographicToLocal(double centralMeridian, double lon0, double lat0, double lon, double lat,
+  double& x, double& y);
+void localToGeographic(double centralMeridian, double lon0, double lat0, double x, double y,
+  double& lon, double& lat);
 
 } // namespace gmm

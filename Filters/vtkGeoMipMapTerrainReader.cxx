@@ -140,9 +140,58 @@ int vtkGeoMipMapTerrainReader::RequestData(
     lonLat->SetNumberOfComponents(2);
     lonLat->InsertNextTuple2(raster.lon0, raster.lat0);
     fd->AddArray(lonLat);
+    vtkNew<vtkDoubleArray> meridian;
+    meridian->SetName("CentralMeridian");
+    meridian->InsertNextValue(raster.centralMeridian);
+    fd->AddArray(meridian);
   }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// (lon0, lat0, central meridian) from an image's field data; false when absent.
+bool GeographicFrame(vtkImageData* image, double frame[3])
+{
+  vtkFieldData* fd = image ? image->GetFieldData() : nullptr;
+  vtkDataArray* origin = fd ? fd->GetArray("GeographicOrigin") : nullptr;
+  vtkDataArray* meridian = fd ? fd->GetArray("CentralMeridian") : nullptr;
+  if (!origin || !meridian || origin->GetNumberOfTuples() < 1 ||
+    origin->GetNumberOfComponents() != 2 || meridian->GetNumberOfTuples() < 1)
+  {
+    return false;
+  }
+  frame[0] = origin->GetComponent(0, 0);
+  frame[1] = origin->GetComponent(0, 1);
+  frame[2] = meridian->GetComponent(0, 0);
+  return true;
+}
+}
+
+bool vtkGeoMipMapTerrainReader::GeographicToLocal(
+  vtkImageData* image, double lon, double lat, double xy[2])
+{
+  double f[3];
+  if (!GeographicFrame(image, f))
+  {
+    return false;
+  }
+  gmm::geographicToLocal(f[2], f[0], f[1], lon, lat, xy[0], xy[1]);
+  return true;
+}
+
+bool vtkGeoMipMapTerrainReader::LocalToGeographic(
+  vtkImageData* image, double x, double y, double lonLat[2])
+{
+  double f[3];
+  if (!GeographicFrame(image, f))
+  {
+    return false;
+  }
+  gmm::localToGeographic(f[2], f[0], f[1], x, y, lonLat[0], lonLat[1]);
+  return true;
 }
 
 //------------------------------------------------------------------------------

@@ -30,20 +30,41 @@
  * - Projected CRS: x, y are the CRS coordinates converted to metres (e.g. UTM eastings and
  *   northings: large values, on purpose, as in the source).
  * - Geographic CRS (lon/lat), or no CRS with a geotransform inside the lon/lat range
- *   (recorded as "EPSG:4326 (assumed)"): a local metric frame. With (lon0, lat0) the
- *   south-west sample and lat_c the latitude of the DEM's centre,
- *   x = (lon - lon0) * pi/180 * N(lat_c) * cos(lat_c),  y = (lat - lat0) * pi/180 * M(lat_c),
- *   where M and N are the WGS84 meridional and prime-vertical radii of curvature from
- *   GeographicLib::Ellipsoid::WGS84(). The origin is (0, 0) at the south-west sample; the
- *   field data array "GeographicOrigin" holds (lon0, lat0). The error of this
- *   equirectangular frame over a one-degree tile is below 0.1 % of distances.
+ *   (recorded as "EPSG:4326 (assumed)"): resampled onto a regular grid in a local metric
+ *   frame, the WGS84 transverse Mercator projection (GeographicLib::TransverseMercator,
+ *   scale 1) on the raster's central meridian, shifted so that the raster's south-west
+ *   sample (lon0, lat0) is (0, 0). Field data "GeographicOrigin" holds (lon0, lat0) and
+ *   "CentralMeridian" the meridian; GeographicToLocal / LocalToGeographic convert.
+ *   Why transverse Mercator: it is conformal (the same scale in every direction, so slopes
+ *   and shapes are kept) and its scale is exactly 1 on the central meridian, growing only
+ *   with the distance E from it, as 1 + E^2 / (2 R^2); heights stay heights above the
+ *   datum. A local tangent plane would instead shrink distances radially only (not
+ *   conformal) and, used for heights, bend the terrain down by the earth's curvature
+ *   (about 160 m at 45 km). The equirectangular frame used before (one pair of radii of
+ *   curvature at the centre latitude) was off by up to 0.9 % east-west on a one-degree
+ *   SRTM tile at 46.5 N, because the east-west scale drifts with latitude across it.
+ *   The grid: spacing = the source's sample steps in metres at its centre latitude
+ *   (east-west and north-south, so about as many samples as the source), nodes at
+ *   multiples of the spacing from (0, 0), covering the footprint of the source (its
+ *   curved corners hold NaN). A node's height is bilinear in the 4 source samples around
+ *   its lon/lat (the nearest one when any of the 4 is nodata). Rasters wider than 40
+ *   degrees of longitude are refused (reproject them). What the mapper draws, and the
+ *   screen-space error it certifies, refer to this resampled grid.
+ *   **Accuracy**: horizontal distances on the grid match WGS84 geodesic distances
+ *   (GeographicLib::Geodesic) between the points the nodes represent to a relative error
+ *   of at most GetGeographicDistanceError() = 4e-5 (0.004 %) for rasters up to 1 degree
+ *   of longitude wide, at any latitude. The error is the projection's scale, so it grows
+ *   with the square of the width. Measured on 20000 random node pairs: Rainier (N46W122)
+ *   1.8e-5, N42E001 2.1e-5, N48W125 1.7e-5, Boulder (0.2 degree wide) 8.8e-7; 3.7e-5 on a
+ *   synthetic one-degree tile at the equator, the widest in metres (Testing/Python/
+ *   TestGeographicFrame.py and TestTerrainReaderData.py check the figure).
  * - Images read through OpenImageIO have no georeference: origin (0, 0), Spacing metres.
  *   A GDAL raster without a geotransform is read the same way, rows north-up, with a
  *   warning (a GeoTIFF that lost its tags should not pass unnoticed).
  *
  * Field data: "CRS" (string: "EPSG:xxxx", the WKT, or "none"), "SourceFormat" (GDAL driver
- * or OpenImageIO format name), "HeightUnit" (string), "GeographicOrigin" (2 doubles, only
- * for geographic rasters).
+ * or OpenImageIO format name), "HeightUnit" (string), "GeographicOrigin" (2 doubles) and
+ * "CentralMeridian" (1 double), both only for geographic rasters.
  *
  * Robustness: a missing, empty, truncated or malformed file, an unsupported sample type, or
  * a header whose size the file cannot hold (checked against the file size and a cap of
@@ -61,6 +82,8 @@
 #include "vtkImageAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
+
+class vtkImageData;
 
 class GEOMIPMAPFILTERS_EXPORT vtkGeoMipMapTerrainReader : public vtkImageAlgorithm
 {
@@ -105,6 +128,23 @@ public:
   vtkGetMacro(TerrainRGB, vtkTypeBool);
   vtkBooleanMacro(TerrainRGB, vtkTypeBool);
   ///@}
+
+  ///@{
+  /**
+   * Geographic rasters: lon/lat (degrees, WGS84) to the image's x, y (metres) and back,
+   * using the field data of an image this reader produced. Return false (and leave the
+   * output untouched) when the image has no "GeographicOrigin" / "CentralMeridian".
+   */
+  static bool GeographicToLocal(vtkImageData* image, double lon, double lat, double xy[2]);
+  static bool LocalToGeographic(vtkImageData* image, double x, double y, double lonLat[2]);
+  ///@}
+
+  /**
+   * The stated accuracy of the geographic frame (see the class description): the largest
+   * relative error of a horizontal distance on the grid against the WGS84 geodesic
+   * distance, for rasters up to 1 degree of longitude wide.
+   */
+  static double GetGeographicDistanceError() { return 4e-5; }
 
 protected:
   vtkGeoMipMapTerrainReader();

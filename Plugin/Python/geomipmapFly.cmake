@@ -27,10 +27,8 @@ endforeach()
 # Tests (plain CTest, /usr/bin/python3; CI runs ctest under xvfb-run).
 if(GEOMIPMAP_BUILD_TESTING)
   set(_fly_tests "${CMAKE_SOURCE_DIR}/Testing/Python")
-  # Same cache variable as Testing/Python/CMakeLists.txt (first definition wins).
-  set(GEOMIPMAP_DATA_DIR "${CMAKE_SOURCE_DIR}/../shared/data" CACHE PATH
-    "Folder with the real DEMs (../shared/data); tests that need it skip when it is absent")
-  get_filename_component(_fly_data "${GEOMIPMAP_DATA_DIR}" ABSOLUTE)
+  # Real data: GEOMIPMAP_DATA_DIR (top-level CMakeLists.txt, Testing/Python/gmmdata.py).
+  set(_fly_env "PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT}" ${GEOMIPMAP_TEST_DATA_ENV})
   file(MAKE_DIRECTORY "${CMAKE_BINARY_DIR}/Testing/Python")
   foreach(_t IN ITEMS TestFlySynthetic TestFlyRealDEM TestFlyBadInput)
     add_test(NAME geomipmapPython.${_t}
@@ -41,6 +39,6 @@ if(GEOMIPMAP_BUILD_TESTING)
       SKIP_RETURN_CODE 77
       TIMEOUT 300
       LABELS "python;fly"
-      ENVIRONMENT "GEOMIPMAP_DATA_DIR=${_fly_data};GEOMIPMAP_DATA=${_fly_data};PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT}")
+      ENVIRONMENT "${_fly_env}")
   endforeach()
 endif()

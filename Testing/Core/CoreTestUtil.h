@@ -297,6 +297,103 @@ inline MeshCheckResult checkMesh(const gmm::Heightfield& hf, const std::vector<i
 }
 
 // ---------------------------------------------------------------------------------------
+// Area coverage of the unit cells: cell (i, j) is the grid square [i, i+1] x [j, j+1]. Each
+// triangle (lattice vertices, grid coordinates) is clipped to every cell of its bounding box
+// and the clipped areas are summed per cell, so a cell covered once has area 1 (to double
+// rounding, ~1e-12), a missing triangle leaves a deficit and an overlap an excess.
+inline std::vector<double> cellCoverage(const gmm::Heightfield& hf, const std::vector<uint32_t>& idx)
+{
+  const int nx = hf.nx, cw = std::max(hf.nx - 1, 0), ch = std::max(hf.ny - 1, 0);
+  std::vector<double> area(static_cast<std::size_t>(cw) * ch, 0.0);
+  struct P
+  {
+    double x, y;
+  };
+  // keeps the part of poly with sign * (coord - bound) >= 0 (axis 0: x, 1: y)
+  auto clip = [](const P* in, int n, P* out, int axis, double bound, double sign) {
+    int m = 0;
+    for (int k = 0; k < n; ++k)
+    {
+      const P& a = in[k];
+      const P& b = in[(k + 1) % n];
+      const double da = sign * ((axis ? a.y : a.x) - bound), db = sign * ((axis ? b.y : b.x) - bound);
+      if (da >= 0)
+        out[m++] = a;
+      if ((da >= 0) != (db >= 0))
+      {
+        const double t = da / (da - db);
+        out[m++] = P{ a.x + t * (b.x - a.x), a.y + t * (b.y - a.y) };
+      }
+    }
+    return m;
+  };
+  for (std::size_t t = 0; t + 2 < idx.size(); t += 3)
+  {
+    P tri[3];
+    for (int k = 0; k < 3; ++k)
+      tri[k] = P{ static_cast<double>(idx[t + k] % nx), static_cast<double>(idx[t + k] / nx) };
+    const int i0 = static_cast<int>(std::min({ tri[0].x, tri[1].x, tri[2].x }));
+    const int i1 = static_cast<int>(std::max({ tri[0].x, tri[1].x, tri[2].x }));
+    const int j0 = static_cast<int>(std::min({ tri[0].y, tri[1].y, tri[2].y }));
+    const int j1 = static_cast<int>(std::max({ tri[0].y, tri[1].y, tri[2].y }));
+    for (int j = j0; j < j1 && j < ch; ++j)
+      for (int i = i0; i < i1 && i < cw; ++i)
+      {
+        P a[8], b[8];
+        int n = clip(tri, 3, a, 0, i, 1.0);
+        n = clip(a, n, b, 0, i + 1, -1.0);
+        n = clip(b, n, a, 1, j, 1.0);
+        n = clip(a, n, b, 1, j + 1, -1.0);
+        double twice = 0.0;
+        for (int k = 0; k < n; ++k)
+          twice += b[k].x * b[(k + 1) % n].y - b[(k + 1) % n].x * b[k].y;
+        area[static_cast<std::size_t>(j) * cw + i] += 0.5 * std::fabs(twice);
+      }
+  }
+  return area;
+}
+
+// Coverage a frame must have, whatever its levels: every cell of a block with mustCover
+// whose four corner samples are finite is covered exactly once; no cell of a block that is
+// not drawn is covered; no cell anywhere is covered more than once. Blocks are the bands
+// colStart x rowStart (block index row * cols + col). Returns "" or the first violation.
+inline std::string checkCoverage(const gmm::Heightfield& hf, const std::vector<int>& colStart,
+  const std::vector<int>& rowStart, const std::vector<uint32_t>& idx,
+  const std::vector<bool>& drawn, const std::vector<bool>& mustCover)
+{
+  const std::vector<double> area = cellCoverage(hf, idx);
+  const int cw = hf.nx - 1, cols = static_cast<int>(colStart.size()) - 1;
+  const double eps = 1e-9;
+  for (int r = 0; r + 1 < static_cast<int>(rowStart.size()); ++r)
+    for (int c = 0; c < cols; ++c)
+    {
+      const int b = r * cols + c;
+      for (int j = rowStart[r]; j < rowStart[r + 1]; ++j)
+        for (int i = colStart[c]; i < colStart[c + 1]; ++i)
+        {
+          const double a = area[static_cast<std::size_t>(j) * cw + i];
+          const bool valid = std::isfinite(hf.height(i, j)) && std::isfinite(hf.height(i + 1, j)) &&
+            std::isfinite(hf.height(i, j + 1)) && std::isfinite(hf.height(i + 1, j + 1));
+          std::string why;
+          if (a > 1.0 + eps)
+            why = "covered more than once";
+          else if (!drawn[b] && a > eps)
+            why = "covered although its block is not drawn";
+          else if (drawn[b] && mustCover[b] && valid && std::fabs(a - 1.0) > eps)
+            why = "has 4 valid samples but is not covered exactly once";
+          if (!why.empty())
+          {
+            char buf[200];
+            std::snprintf(buf, sizeof buf, "cell (%d,%d) of block %d: area %.9f %s", i, j, b, a,
+              why.c_str());
+            return buf;
+          }
+        }
+    }
+  return std::string();
+}
+
+// ---------------------------------------------------------------------------------------
 // Drawn surface under every sample: rasterise each triangle over lattice points (exact
 // integer inside test) and interpolate z barycentrically in double from the float heights.
 struct SurfaceSample

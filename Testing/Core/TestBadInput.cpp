@@ -22,6 +22,7 @@ TEST(BadInput, BadViewsAndTau)
   add("NaN tau", good, nan);
   add("negative tau", good, -1.0);
   add("infinite tau", good, inf);
+  add("-infinite tau", good, -inf);
   gmm::View v = good;
   v.forward = { 0, 0, 0 };
   add("zero forward", v, 1.0);
@@ -64,21 +65,26 @@ TEST(BadInput, BadViewsAndTau)
     e.update(good, 1.0);
     ASSERT_EQ(e.lastError(), "");
     ASSERT_GT(e.indices().size(), 0u);
-    if (c.first != "infinite tau")
-      EXPECT_FALSE(gmm::validateView(c.second.first).empty() && std::isfinite(c.second.second) && c.second.second >= 0)
-        << c.first;
+    // every case is bad: a bad view, or a tau that is not finite and >= 0
+    EXPECT_FALSE(gmm::validateView(c.second.first).empty() && std::isfinite(c.second.second) && c.second.second >= 0)
+      << c.first;
     const gmm::FrameStats& st = e.update(c.second.first, c.second.second);
-    if (c.first == "infinite tau")
-    {
-      // SelectLevels.h requires finite tau; Engine may refuse or clamp, but must not crash
-      // and must stay consistent.
-      EXPECT_EQ(st.triangles * 3, e.indices().size()) << c.first;
-      continue;
-    }
+    // Refused (robustness.md: tau negative, NaN or +-Inf refuses the frame), infinite tau
+    // included: it would otherwise certify nothing while claiming a bound.
     EXPECT_FALSE(e.lastError().empty()) << c.first;
     EXPECT_EQ(st.triangles, 0u) << c.first;
     EXPECT_TRUE(e.indices().empty()) << c.first << ": stale indices left after a refused frame";
     EXPECT_FALSE(st.reused) << c.first;
+  }
+  // the view-independent mode refuses the same values of its error bound (metres)
+  for (double bad : { nan, -1.0, inf, -inf })
+  {
+    e.update(good, 1.0);
+    ASSERT_GT(e.indices().size(), 0u);
+    const gmm::FrameStats& st = e.updateForError(bad);
+    EXPECT_FALSE(e.lastError().empty()) << "updateForError(" << bad << ")";
+    EXPECT_EQ(st.triangles, 0u) << "updateForError(" << bad << ")";
+    EXPECT_TRUE(e.indices().empty()) << "updateForError(" << bad << ")";
   }
   // recovers
   const gmm::FrameStats& st = e.update(good, 1.0);

@@ -1,6 +1,7 @@
 // Nodata (NaN) handling: no emitted triangle references a NaN sample, whatever the levels;
-// samples away from holes stay covered; all-nodata emits nothing; the mesh around holes
-// stays free of T-junctions and folds.
+// every cell whose four samples are valid is covered exactly once (area check) in the
+// engine's own frames at any error or view, and in hole-free blocks at any forced levels;
+// all-nodata emits nothing; the mesh around holes stays free of T-junctions and folds.
 #include "CoreTestUtil.h"
 #include "Engine.h"
 #include "Levels.h"
@@ -24,27 +25,51 @@ void expectNoNaNReferenced(const gmm::Heightfield& hf, const std::vector<uint32_
   EXPECT_EQ(bad, 0u) << what << ": indices referencing nodata";
 }
 
-// Checks a frame: no NaN referenced, manifold/T-junction-free (boundary edges may border
-// holes), and every cell whose four corners are valid and whose block is drawn at level 0
-// with level-0 edges... is too strong in general; instead: every sample with no NaN within
-// a 1-sample ring that lies in a drawn block at level 0 is covered.
-void checkFrame(const gmm::Engine& e, const std::string& what)
+// True when block b's samples, borders included, are all finite (computed here from the
+// heights, not from the quadtree's own flag).
+bool blockFree(const gmm::Heightfield& hf, const gmm::Quadtree& qt, int b)
+{
+  const int c = b % qt.blockCols, r = b / qt.blockCols;
+  for (int j = qt.rowStart[r]; j <= qt.rowStart[r + 1]; ++j)
+    for (int i = qt.colStart[c]; i <= qt.colStart[c + 1]; ++i)
+      if (!std::isfinite(hf.height(i, j)))
+        return false;
+  return true;
+}
+
+// Checks a frame: no NaN referenced; manifold and T-junction-free (boundary edges may
+// border holes); and the area coverage (CoreTestUtil.h checkCoverage): no cell covered
+// twice, nothing in an undrawn block, and every cell whose four samples are valid covered
+// exactly once
+// - in every drawn block, when the levels are the engine's own choice (`selected`): a
+//   coarser configuration touching nodata has an infinite error, so the engine must never
+//   pick one that drops a valid cell next to a hole;
+// - in every drawn block free of nodata, for levels forced with updateWithLevels (there a
+//   coarse triangle touching a hole is dropped whole, by design).
+void checkFrame(const gmm::Engine& e, const std::string& what, bool selected)
 {
   const gmm::Heightfield& hf = e.heightfield();
   const gmm::Quadtree& qt = e.quadtree();
   expectNoNaNReferenced(hf, e.indices(), what);
   MeshCheckOptions opt;
   opt.allowNodataHoles = true;
-  opt.checkArea = false;
+  opt.checkArea = false; // the exact coverage below replaces it
   // blocks with holes and their neighbours may lose any triangle touching nodata at coarse
   // levels: allow boundary edges along any axis line next to a drawn-but-holed region by
   // treating blocks that contain or touch nodata as "not drawn" for the border rule.
   opt.drawn.assign(qt.blockCount(), true);
   for (int b = 0; b < qt.blockCount(); ++b)
-    if (qt.blockHasNodata[b] || e.levels()[b] < 0)
+    if (!blockFree(hf, qt, b) || e.levels()[b] < 0)
       opt.drawn[b] = false;
   MeshCheckResult res = checkMesh(hf, qt.colStart, qt.rowStart, e.indices(), opt);
   EXPECT_EQ(res.error, "") << what;
+  std::vector<bool> drawn(qt.blockCount()), mustCover(qt.blockCount());
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    drawn[b] = e.levels()[b] >= 0;
+    mustCover[b] = selected || blockFree(hf, qt, b);
+  }
+  EXPECT_EQ(checkCoverage(hf, qt.colStart, qt.rowStart, e.indices(), drawn, mustCover), "") << what;
 }
 } // namespace
 
@@ -62,18 +87,15 @@ TEST(Nodata, SingleSampleHole)
     for (double err : { 0.0, 1.0, 50.0, 1e9 })
     {
       e.updateForError(err);
-      checkFrame(e, "updateForError " + std::to_string(err));
-      // the block holding the hole must stay at level 0 around it (ErrorTable.h: infinite
-      // error), so the 8 neighbours of the hole that are not themselves nodata and whose
-      // four surrounding cells... at minimum: cells not touching the hole in a level-0 block
-      // are covered.
+      checkFrame(e, "updateForError " + std::to_string(err), true);
     }
     gmm::View v;
     v.eye = { hf.worldX(nx / 2.0), hf.worldY(-5.0), 800.0 };
     v.forward = { 0, hf.dy, -0.6 * std::fabs(hf.dy) };
     v.fovYDegrees = 60;
     e.update(v, 1.0);
-    checkFrame(e, "update");
+    ASSERT_EQ(e.lastError(), "");
+    checkFrame(e, "update", true);
   }
 }
 
@@ -98,7 +120,7 @@ TEST(Nodata, WholeBlockHoleAndRandomLevels)
     for (double err : { 0.0, 5.0, 1e9 })
     {
       e.updateForError(err);
-      checkFrame(e, "updateForError");
+      checkFrame(e, "updateForError " + std::to_string(err), true);
     }
     // random levels: tessellation itself must drop every triangle touching nodata
     for (int f = 0; f < 10; ++f)
@@ -115,20 +137,22 @@ TEST(Nodata, WholeBlockHoleAndRandomLevels)
           lv[qt.blockIndex(cc, rr)] = static_cast<int8_t>(v[randInt(rng, 0, static_cast<int>(v.size()) - 1)]);
         }
       e.updateWithLevels(lv);
-      checkFrame(e, "updateWithLevels");
+      checkFrame(e, "updateWithLevels", false);
     }
-    // at full resolution, every cell whose 4 corners are valid is drawn (2 triangles): the
-    // emitted triangle count is exactly 2 per such cell.
+    // At full resolution (error 0) every cell with 4 valid corners gives 2 triangles and a
+    // cell with exactly one nodata corner at most 1: the count is bounded by hand.
     e.updateForError(0.0);
-    std::size_t validCells = 0;
+    std::size_t validCells = 0, oneMissing = 0;
     for (int j = 0; j + 1 < ny; ++j)
       for (int i = 0; i + 1 < nx; ++i)
-        if (!std::isnan(hf.height(i, j)) && !std::isnan(hf.height(i + 1, j)) &&
-          !std::isnan(hf.height(i, j + 1)) && !std::isnan(hf.height(i + 1, j + 1)))
-          ++validCells;
-    // a cell with 1 NaN corner may still give one valid triangle: so count >= 2*validCells
+      {
+        const int bad = std::isnan(hf.height(i, j)) + std::isnan(hf.height(i + 1, j)) +
+          std::isnan(hf.height(i, j + 1)) + std::isnan(hf.height(i + 1, j + 1));
+        validCells += bad == 0;
+        oneMissing += bad == 1;
+      }
     EXPECT_GE(e.stats().triangles, 2 * validCells);
-    EXPECT_LE(e.stats().triangles, 2 * static_cast<std::size_t>(nx - 1) * (ny - 1));
+    EXPECT_LE(e.stats().triangles, 2 * validCells + oneMissing);
   }
 }
 

@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <iostream>
+#include <utility>
 
 using namespace gmmtest;
 
@@ -64,7 +66,47 @@ int randomSide(Rng& rng)
   return randInt(rng, 2, 300);
 }
 
-void runCase(Rng& rng, int nx, int ny, int maxQ, bool withUndrawn, int& cases)
+// What the assignments of runCase exercised (so that a test can tell that it checked
+// something: triangles drawn, coarse blocks next to fine ones).
+struct CaseTally
+{
+  int withTriangles = 0;
+  int mixed = 0;
+};
+
+// Pairs of side-by-side drawn blocks whose levels differ: (pairs, largest difference).
+std::pair<int, int> mixedNeighbours(const gmm::Quadtree& qt, const std::vector<int8_t>& lv)
+{
+  int pairs = 0, worst = 0;
+  for (int r = 0; r < qt.blockRows; ++r)
+    for (int c = 0; c < qt.blockCols; ++c)
+    {
+      const int a = lv[qt.blockIndex(c, r)];
+      for (const auto& [nc, nr] : { std::pair{ c + 1, r }, std::pair{ c, r + 1 } })
+      {
+        if (nc >= qt.blockCols || nr >= qt.blockRows)
+          continue;
+        const int b = lv[qt.blockIndex(nc, nr)];
+        if (a >= 0 && b >= 0 && a != b)
+        {
+          ++pairs;
+          worst = std::max(worst, std::abs(a - b));
+        }
+      }
+    }
+  return { pairs, worst };
+}
+
+std::vector<int> bandWidths(const std::vector<int>& starts)
+{
+  std::vector<int> w;
+  for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+    w.push_back(starts[k + 1] - starts[k]);
+  return w;
+}
+
+void runCase(Rng& rng, int nx, int ny, int maxQ, bool withUndrawn, int& cases,
+  CaseTally* tally = nullptr)
 {
   gmm::Heightfield hf = roughTerrain(nx, ny, rng, randInt(rng, 0, 1) ? 2.0 : -2.0,
     randInt(rng, 0, 1) ? 3.0 : -3.0);
@@ -83,6 +125,11 @@ void runCase(Rng& rng, int nx, int ny, int maxQ, bool withUndrawn, int& cases)
     }
     MeshCheckResult res = checkMesh(hf, qt.colStart, qt.rowStart, out, opt);
     ++cases;
+    if (tally)
+    {
+      tally->withTriangles += res.triangles > 0;
+      tally->mixed += mixedNeighbours(qt, lv).first > 0;
+    }
     if (!res.error.empty())
     {
       std::ostringstream s;
@@ -104,7 +151,7 @@ TEST(Watertight, RandomSizesAllDrawn)
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < 500 && !HasFailure(); ++k)
   {
-    const int maxQ = randInt(rng, 0, 9) == 0 ? 3 : randInt(rng, 4, 64);
+    const int maxQ = randInt(rng, 0, 9) == 0 ? 4 : randInt(rng, 5, 64);
     runCase(rng, randomSide(rng), randomSide(rng), maxQ, false, cases);
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -119,7 +166,7 @@ TEST(Watertight, SpecialShapesAllDrawn)
   const int sides[] = { 2, 3, 4, 5, 9, 16, 17, 31, 33, 64, 65, 66, 97, 129, 257 };
   for (int a : sides)
     for (int b : { 2, 3, 17, 66 })
-      for (int maxQ : { 3, 4, 5, 16, 32, 64 })
+      for (int maxQ : { 4, 5, 16, 32, 64 })
       {
         runCase(rng, a, b, maxQ, false, cases);
         if (HasFailure())
@@ -133,7 +180,7 @@ TEST(Watertight, RandomSizesWithUndrawnBlocks)
   int cases = 0;
   for (int k = 0; k < 400 && !HasFailure(); ++k)
   {
-    const int maxQ = randInt(rng, 0, 9) == 0 ? 3 : randInt(rng, 4, 64);
+    const int maxQ = randInt(rng, 0, 9) == 0 ? 4 : randInt(rng, 5, 64);
     runCase(rng, randomSide(rng), randomSide(rng), maxQ, true, cases);
   }
 }
@@ -181,39 +228,70 @@ TEST(Watertight, EngineUpdateWithLevelsMatchesFreshTessellation)
   }
 }
 
-// Block size 2 used to give a 1-quad band inside a wider DEM (halving 3 quads), i.e. a Thin
-// block next to ring/one-quad blocks, whose shared edge was not stitched: 4x3 DEM, blocks
-// 1x2 and 2x2 quads at levels 0 and 1 gave a T-junction at (1,1). buildQuadtree now raises
-// the block size to 4; this checks that no such band appears any more.
-TEST(Watertight, BlockSize2ThinBandMinimal)
+// The minimum block size is 4 quads (Quadtree.h raises anything smaller to 4; Engine.h
+// refuses it). Halving then gives bands of 2, 3 or 4 quads, so the narrowest blocks (2 quads:
+// levels 0 and 1 only) sit next to 3- and 4-quad blocks. Block size 2 used to give a 1-quad
+// band inside a wider DEM (a Thin block next to ring/one-quad blocks) whose shared edge was
+// not stitched: 4x3 DEM, blocks 1x2 and 2x2 quads at levels 0 and 1 gave a T-junction at
+// (1,1). These cases check the real minimum, and that they really exercise stitching: the
+// assignments must draw triangles and put coarse and fine blocks side by side.
+
+// 10 x 9 quads at block size 4: column bands 2,3,2,3 and row bands 4,2,3. Every valid level
+// of every block, in random combinations: watertight, triangles drawn, coarse next to fine.
+TEST(Watertight, MinimumBlockSizeNarrowBands)
 {
   Rng rng(1);
-  gmm::Heightfield hf = roughTerrain(4, 3, rng, 2.0, 3.0);
-  gmm::Quadtree qt = gmm::buildQuadtree(hf, 2);
-  for (std::size_t k = 0; k + 1 < qt.colStart.size(); ++k)
-    EXPECT_GE(qt.colStart[k + 1] - qt.colStart[k], 2);
-  std::vector<int8_t> lv(qt.blockCount(), 0);
-  for (int top = 0; top < 2; ++top)
+  gmm::Heightfield hf = roughTerrain(11, 10, rng, 2.0, 3.0);
+  gmm::Quadtree qt = gmm::buildQuadtree(hf, 4);
+  ASSERT_EQ(bandWidths(qt.colStart), (std::vector<int>{ 2, 3, 2, 3 }));
+  ASSERT_EQ(bandWidths(qt.rowStart), (std::vector<int>{ 4, 2, 3 }));
+  // below the minimum, the size is raised to it: the same bands
+  for (int small : { 0, 1, 2, 3 })
   {
-    if (top)
-      lv.back() = static_cast<int8_t>(gmm::topLevel(qt.colStart.back() - qt.colStart[qt.blockCols - 1],
-        qt.rowStart.back() - qt.rowStart[qt.blockRows - 1]));
+    const gmm::Quadtree q2 = gmm::buildQuadtree(hf, small);
+    EXPECT_EQ(q2.colStart, qt.colStart) << "block size " << small;
+    EXPECT_EQ(q2.rowStart, qt.rowStart) << "block size " << small;
+  }
+  int mixed = 0, worstDiff = 0, checked = 0;
+  for (int k = 0; k < 600 && !HasFailure(); ++k)
+  {
+    std::vector<int8_t> lv = randomLevels(qt, rng, k % 5, k % 3 == 2 ? 0.3 : 0.0);
     std::vector<uint32_t> out;
     gmm::tessellate(hf, qt, lv, out);
-    EXPECT_EQ(checkMesh(hf, qt.colStart, qt.rowStart, out, MeshCheckOptions{}).error, "");
+    MeshCheckOptions opt;
+    opt.drawn.resize(lv.size());
+    for (std::size_t b = 0; b < lv.size(); ++b)
+      opt.drawn[b] = lv[b] >= 0;
+    const MeshCheckResult res = checkMesh(hf, qt.colStart, qt.rowStart, out, opt);
+    EXPECT_EQ(res.error, "") << "assignment " << k;
+    if (std::count(opt.drawn.begin(), opt.drawn.end(), true) > 0)
+      EXPECT_GT(res.triangles, 0u) << "assignment " << k;
+    const auto [pairs, diff] = mixedNeighbours(qt, lv);
+    mixed += pairs > 0;
+    worstDiff = std::max(worstDiff, diff);
+    ++checked;
   }
+  std::cout << "[ minimum block size ] " << checked << " assignments, " << mixed
+            << " with coarse/fine neighbours, largest level difference " << worstDiff << "\n";
+  EXPECT_GT(mixed, checked / 2);
+  EXPECT_GE(worstDiff, 2); // 4-quad blocks reach level 2, 2-quad blocks stop at 1
 }
 
-TEST(Watertight, BlockSize2RandomSizes)
+TEST(Watertight, MinimumBlockSizeRandomSizes)
 {
   Rng rng(2222);
   int cases = 0;
+  CaseTally tally;
   for (int k = 0; k < 200 && !HasFailure(); ++k)
-    runCase(rng, randomSide(rng), randomSide(rng), 2, k % 2 == 1, cases);
+    runCase(rng, randomSide(rng), randomSide(rng), 4, k % 2 == 1, cases, &tally);
+  std::cout << "[ minimum block size ] " << cases << " assignments, " << tally.withTriangles
+            << " drew triangles, " << tally.mixed << " had coarse/fine neighbours\n";
+  EXPECT_GT(tally.withTriangles, cases * 9 / 10);
+  EXPECT_GT(tally.mixed, cases / 3);
 }
 
 // End to end: the levels Engine::update selects for random cameras give watertight meshes
-// (culled blocks count as undrawn). Block size 2 is checked separately (see above).
+// (culled blocks count as undrawn). The minimum block size has its own case below.
 TEST(Watertight, EngineUpdateFramesAreWatertight)
 {
   Rng rng(8080);
@@ -250,29 +328,57 @@ TEST(Watertight, EngineUpdateFramesAreWatertight)
   }
 }
 
-// Engine.h says maxBlockQuads >= 2, the implementation refuses < 4. Either a clear refusal
-// or a watertight result is acceptable; a silent crack is not.
-TEST(Watertight, EngineUpdateBlockSize2)
+// The engine at the minimum block size: the levels its own selection picks
+// (updateForError and update) are watertight, draw triangles and do put coarse blocks next
+// to fine ones. Sizes below the minimum are refused with a reason, leaving the engine empty.
+TEST(Watertight, EngineUpdateMinimumBlockSize)
 {
   Rng rng(5);
+  int frames = 0, mixedFrames = 0;
   for (int t = 0; t < 40 && !HasFailure(); ++t)
   {
-    const int nx = randInt(rng, 3, 40), ny = randInt(rng, 3, 40);
+    const int nx = randInt(rng, 6, 60), ny = randInt(rng, 6, 60);
     gmm::Heightfield hf = roughTerrain(nx, ny, rng, 10.0, 10.0, 100.0, 0.0);
-    gmm::Engine e;
-    const std::string err = e.setHeightfield(hf, 2, 1);
-    if (!err.empty())
+    for (int small : { 2, 3 })
     {
-      EXPECT_TRUE(e.empty());
-      continue;
+      gmm::Engine refused;
+      const std::string err = refused.setHeightfield(hf, small, 1);
+      EXPECT_NE(err.find("minimum of 4"), std::string::npos) << "block size " << small << ": " << err;
+      EXPECT_TRUE(refused.empty());
     }
-    for (double maxErr : { 0.0, 1.0, 10.0, 1e9 })
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, 4, 1), "");
+    for (int k = 0; k < 7; ++k)
     {
-      e.updateForError(maxErr);
-      MeshCheckResult res = checkMesh(hf, e.quadtree().colStart, e.quadtree().rowStart, e.indices(), {});
-      EXPECT_EQ(res.error, "") << nx << "x" << ny << " updateForError(" << maxErr << ")";
+      if (k < 4)
+        e.updateForError(std::vector<double>{ 0.0, 1.0, 10.0, 1e9 }[k]);
+      else
+      {
+        // looking at the DEM's centre from outside its south edge
+        const double ext = 10.0 * std::max(nx, ny);
+        const glm::dvec3 centre{ hf.worldX(0.5 * (nx - 1)), hf.worldY(0.5 * (ny - 1)), 50.0 };
+        gmm::View v;
+        v.eye = centre + glm::dvec3{ randReal(rng, -0.5, 0.5) * ext, -0.8 * ext, randReal(rng, 0.2, 0.8) * ext };
+        v.forward = centre - v.eye;
+        v.fovYDegrees = 60;
+        e.update(v, std::vector<double>{ 0.5, 2, 8 }[k - 4]);
+        ASSERT_EQ(e.lastError(), "");
+      }
+      MeshCheckOptions opt;
+      opt.drawn.resize(e.levels().size());
+      for (std::size_t b = 0; b < e.levels().size(); ++b)
+        opt.drawn[b] = e.levels()[b] >= 0;
+      const MeshCheckResult res = checkMesh(hf, e.quadtree().colStart, e.quadtree().rowStart, e.indices(), opt);
+      EXPECT_EQ(res.error, "") << nx << "x" << ny << " frame " << k;
+      EXPECT_GT(res.triangles, 0u) << nx << "x" << ny << " frame " << k;
+      EXPECT_EQ(res.triangles, e.stats().triangles);
+      ++frames;
+      mixedFrames += mixedNeighbours(e.quadtree(), e.levels()).first > 0;
       if (HasFailure())
         return;
     }
   }
+  std::cout << "[ minimum block size ] engine: " << frames << " frames, " << mixedFrames
+            << " with coarse/fine neighbours\n";
+  EXPECT_GT(mixedFrames, frames / 4);
 }

@@ -4,10 +4,17 @@
 #define GeoMipMapTestUtilities_h
 
 #include "SyntheticTerrain.h"
+#include "vtkGeoMipMapFilter.h"
+#include "vtkGeoMipMapMapper.h"
+#include "vtkGeoMipMapScreenError.h"
 
+#include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -22,25 +29,54 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <string>
 
 namespace gmmtest
 {
 constexpr int SkipReturnCode = 125; // VTK_SKIP_RETURN_CODE
 
-// Value of "-D <dir>" on the command line, else $GEOMIPMAP_DATA, else ../shared/data.
-inline std::string DataDir(int argc, char* argv[])
+// The real-DEM folder: $GEOMIPMAP_DATA_DIR when set (non-empty), else ../shared/data beside
+// the source tree. The same rule as Testing/Python/gmmdata.py.
+inline std::string DataDir()
 {
-  for (int i = 1; i + 1 < argc; ++i)
+  const char* env = std::getenv("GEOMIPMAP_DATA_DIR");
+  return env && *env ? env : std::string(GEOMIPMAP_SOURCE_DIR) + "/../shared/data";
+}
+
+// True when missing data must fail a test (GEOMIPMAP_REQUIRE_DATA set and not "0", as CI does).
+inline bool DataRequired()
+{
+  const char* env = std::getenv("GEOMIPMAP_REQUIRE_DATA");
+  return env && *env && std::string(env) != "0";
+}
+
+// Path of a data file in DataDir(). When it is missing, prints why and returns false with
+// `exitCode` set to what the test must return: SkipReturnCode, or EXIT_FAILURE when data is
+// required.
+inline bool DataFile(const std::string& name, std::string& path, int& exitCode)
+{
+  path = DataDir() + "/" + name;
+  if (FILE* f = std::fopen(path.c_str(), "rb"))
   {
-    if (std::string(argv[i]) == "-D")
-    {
-      return argv[i + 1];
-    }
+    std::fclose(f);
+    return true;
   }
-  const char* env = std::getenv("GEOMIPMAP_DATA");
-  return env ? env : "../shared/data";
+  if (DataRequired())
+  {
+    std::cout << "FAIL: " << path << " not found; GEOMIPMAP_REQUIRE_DATA is set, so missing "
+              << "data fails the test\n";
+    exitCode = EXIT_FAILURE;
+  }
+  else
+  {
+    std::cout << "SKIP: " << path << " not found (set GEOMIPMAP_DATA_DIR to the shared data "
+              << "folder)\n";
+    exitCode = SkipReturnCode;
+  }
+  return false;
 }
 
 // Deterministic fractal terrain as a vtkImageData with float "Elevation" point scalars.
@@ -139,6 +175,101 @@ inline vtkSmartPointer<vtkImageData> Checkerboard(
     }
   }
   return img;
+}
+
+// ---------------------------------------------------------------------------------------
+// The measured screen-space error of what vtkGeoMipMapMapper drew, independent of the
+// engine's own bound: vtkGeoMipMapFilter with the same camera, actor matrix, viewport,
+// tau, block size and height scale gives the mapper's triangles
+// (TestGeoMipMapFilterAgreement; the triangle counts are compared on every use), and
+// vtkGeoMipMapScreenError (no engine code) measures them against the full-resolution
+// heightfield, projecting with the camera's own composite matrix times the actor's:
+// data -> world -> clip. Same as Testing/Python/gmmtestutil.py.
+
+struct MeasuredFrame
+{
+  vtkIdType Triangles = 0;   // of the filter's copy
+  double MaximumError = 0.0; // pixels, over the in-view samples
+  double Percentile99Error = 0.0;
+  vtkIdType InView = 0, Uncovered = 0;
+};
+
+// Measures the last frame `ren` drew of `actor` (a vtkGeoMipMapMapper over `image`). Call
+// it right after the render.
+inline MeasuredFrame MeasureDrawn(vtkImageData* image, vtkRenderer* ren, vtkActor* actor)
+{
+  auto* mapper = vtkGeoMipMapMapper::SafeDownCast(actor->GetMapper());
+  vtkMatrix4x4* m = actor->GetMatrix(); // also brings GetIsIdentity up to date
+  if (actor->GetIsIdentity())
+  {
+    m = nullptr;
+  }
+  const int* size = ren->GetSize();
+  vtkNew<vtkGeoMipMapFilter> filter;
+  filter->SetInputData(image);
+  filter->SetCamera(ren->GetActiveCamera());
+  filter->SetModelMatrix(m);
+  filter->SetViewportSize(size[0], size[1]);
+  filter->SetPixelError(mapper->GetPixelError());
+  filter->SetBlockSize(mapper->GetBlockSize());
+  filter->SetHeightScale(mapper->GetHeightScale());
+  filter->Update();
+  vtkNew<vtkMatrix4x4> clip;
+  clip->DeepCopy(
+    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  if (m)
+  {
+    vtkMatrix4x4::Multiply4x4(clip, m, clip); // data -> world -> clip
+  }
+  vtkNew<vtkGeoMipMapScreenError> error;
+  error->SetHeightfield(image);
+  error->SetHeightScale(mapper->GetHeightScale());
+  error->SetMesh(filter->GetOutput());
+  error->SetViewportSize(size[0], size[1]);
+  error->SetProjectionMatrix(clip);
+  MeasuredFrame r;
+  r.Triangles = filter->GetOutput()->GetNumberOfPolys();
+  if (error->Compute())
+  {
+    r.MaximumError = error->GetMaximumError();
+    r.Percentile99Error = error->GetPercentile99Error();
+    r.InView = error->GetNumberOfSamplesInView();
+    r.Uncovered = error->GetNumberOfUncoveredSamples();
+  }
+  return r;
+}
+
+// True when the last frame of `actor` measures within the mapper's tau, the measured mesh
+// is the drawn one (same triangle count), something was in view and (unless allowed) every
+// in-view sample was covered. Prints what it measured, prefixed by `what`.
+inline bool DrawnWithinTau(
+  vtkImageData* image, vtkRenderer* ren, vtkActor* actor, const char* what, bool uncoveredOk = false)
+{
+  auto* mapper = vtkGeoMipMapMapper::SafeDownCast(actor->GetMapper());
+  const MeasuredFrame f = MeasureDrawn(image, ren, actor);
+  const double tau = mapper->GetPixelError();
+  const vtkIdType drawn = mapper->GetNumberOfRenderedTriangles();
+  std::cout << what << ": mapper " << drawn << " triangles, filter " << f.Triangles
+            << "; measured error " << f.MaximumError << " px (p99 " << f.Percentile99Error
+            << "), tau " << tau << "; " << f.InView << " samples in view, " << f.Uncovered
+            << " uncovered\n";
+  bool ok = true;
+  if (f.Triangles != drawn || drawn <= 0 || f.InView <= 0)
+  {
+    std::cout << "  FAIL: not the drawn mesh, or nothing drawn / in view\n";
+    ok = false;
+  }
+  if (!(f.MaximumError <= tau + 1e-6))
+  {
+    std::cout << "  FAIL: measured screen error above tau\n";
+    ok = false;
+  }
+  if (!uncoveredOk && f.Uncovered)
+  {
+    std::cout << "  FAIL: in-view samples not covered\n";
+    ok = false;
+  }
+  return ok;
 }
 
 // The window's current RGB pixels.

@@ -1,6 +1,6 @@
 // Mt St Helens (USGS DEM, UTM coordinates near 5.1e6 m) read by VTK's own vtkDEMReader and
 // drawn by vtkGeoMipMapMapper with an elevation colour map: the reader's output plugs in
-// directly. Regression image; skips when ../shared/data is absent.
+// directly. Regression image; skips when the data is absent (GeoMipMapTestUtilities.h DataFile).
 #include "GeoMipMapTestUtilities.h"
 #include "vtkGeoMipMapMapper.h"
 
@@ -10,17 +10,16 @@
 #include "vtkLookupTable.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderer.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <iostream>
 
 int TestGeoMipMapStHelens(int argc, char* argv[])
 {
-  const std::string file = gmmtest::DataDir(argc, argv) + "/SainteHelens.dem";
-  if (!vtksys::SystemTools::FileExists(file))
+  std::string file;
+  int missing = 0;
+  if (!gmmtest::DataFile("SainteHelens.dem", file, missing))
   {
-    std::cout << "SKIP: " << file << " not found (shared data absent)\n";
-    return gmmtest::SkipReturnCode;
+    return missing;
   }
   vtkNew<vtkDEMReader> reader;
   reader->SetFileName(file.c_str());

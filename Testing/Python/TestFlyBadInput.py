@@ -8,6 +8,7 @@ multi-line error dumps.
 import os
 
 from flytestutil import check, run, setup
+from gmmdata import optional_data_file
 
 exe, out = setup()
 garbage = os.path.join(out, "garbage.tif")
@@ -59,9 +60,8 @@ cases = {
     "missing texture": ["--color", "texture:" + os.path.join(out, "nope.png")] + small,
     "colour name": ["--color", "rainbow"],
 }
-data = os.environ.get("GEOMIPMAP_DATA_DIR") or os.environ.get("GEOMIPMAP_DATA", "")
-rgb = os.path.join(data, "fuji_terrain_rgb.png")
-if os.path.isfile(rgb):
+rgb = optional_data_file("fuji_terrain_rgb.png")
+if rgb:
     cases["RGB PNG without --terrain-rgb"] = ["--dem", rgb] + small[2:]
 
 failures = []

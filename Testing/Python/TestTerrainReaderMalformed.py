@@ -4,7 +4,7 @@ Each bad file must: fail the update, raise an ErrorEvent whose text names the fi
 raise the peak memory (ru_maxrss) by more than 64 MB over all of them (the largest
 legitimate decode here is a few MB; an absurd header honoured would need GBs), and leave the same reader able to
 read a good file afterwards. Real-data variants (truncated copies) run only when the data
-folder exists.
+files exist (gmmdata.py: with GEOMIPMAP_REQUIRE_DATA=1 a missing file fails the test).
 """
 import os
 import shutil
@@ -17,11 +17,10 @@ from vtkmodules.util.vtkConstants import VTK_UNSIGNED_CHAR, VTK_UNSIGNED_SHORT
 
 import demfiles
 from geomipmap import vtkGeoMipMapTerrainReader
+from gmmdata import optional_data_file
 from gmmtestutil import ErrorCatcher, check, max_rss_mb, update
 
 tmp = tempfile.mkdtemp(prefix="gmm-malformed-")
-here = os.path.dirname(os.path.abspath(__file__))
-data = os.environ.get("GEOMIPMAP_DATA") or os.path.join(here, "..", "..", "..", "shared", "data")
 
 
 def path(name):
@@ -83,16 +82,16 @@ bad.append((demfiles.tiff(path("rgb8.tif"), np.zeros((3, 4, 3), np.uint8), rgb=T
 bad.append((write("N00E000.hgt", bytes(1000)), {}))
 bad.append((write("N01E000.hgt", bytes(1201 * 1201 * 2 - 2)), {}))
 bad.append((png("grey8.png", 1, VTK_UNSIGNED_CHAR, 100), {"TerrainRGB": 1}))
-if os.path.isdir(data):
-    for name, frac in (("N42E001.hgt", 0.5), ("mt_rainier_90m.tif", 0.5),
-                       ("SainteHelens.dem", 0.3), ("ps_height_1k.png", 0.5),
-                       ("fuji_terrain_rgb.png", 0.5), ("boulder_srtmgl3.asc", 0.4)):
-        with open(os.path.join(data, name), "rb") as f:
-            content = f.read()
-        opts = {"TerrainRGB": 1} if name.startswith("fuji") else {}
-        bad.append((write("truncated_" + name, content[: int(len(content) * frac)]), opts))
-else:
-    print("note: data folder absent, truncated real-file cases skipped")
+for name, frac in (("N42E001.hgt", 0.5), ("mt_rainier_90m.tif", 0.5),
+                   ("SainteHelens.dem", 0.3), ("ps_height_1k.png", 0.5),
+                   ("fuji_terrain_rgb.png", 0.5), ("boulder_srtmgl3.asc", 0.4)):
+    real = optional_data_file(name)
+    if real is None:
+        continue
+    with open(real, "rb") as f:
+        content = f.read()
+    opts = {"TerrainRGB": 1} if name.startswith("fuji") else {}
+    bad.append((write("truncated_" + name, content[: int(len(content) * frac)]), opts))
 
 reader = vtkGeoMipMapTerrainReader()
 errors = ErrorCatcher(reader)

@@ -18,10 +18,11 @@ _SAMPLE = {"uint8": (8, 1), "int16": (16, 2), "uint16": (16, 1), "int32": (32, 2
 
 
 def tiff(path, z, georef=(500000.0, 4000000.0, 30.0), nodata=None, width=None, height=None,
-         compression=1, rgb=False):
+         compression=1, rgb=False, geographic=False):
     """Writes z (ny x nx array, row 0 = north; ny x nx x 3 uint8 when rgb) as a TIFF.
 
-    georef: (west, north, pixel size) of the upper-left corner, or None for a plain TIFF.
+    georef: (west, north, pixel size) of the upper-left corner, or None for a plain TIFF;
+    in UTM zone 10N metres, or in WGS 84 lon/lat degrees (EPSG:4326) when geographic.
     width/height forge the header's ImageWidth/ImageLength; compression forges the tag.
     """
     z = np.ascontiguousarray(z)
@@ -47,8 +48,11 @@ def tiff(path, z, georef=(500000.0, 4000000.0, 30.0), nodata=None, width=None, h
         entries += [
             (33550, "DOUBLE", [size, size, 0.0]),
             (33922, "DOUBLE", [0.0, 0.0, 0.0, west, north, 0.0]),
-            # version 1.1.0, 3 keys: projected model, pixel-is-area, EPSG:32610
-            (34735, "SHORT", [1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32610]),
+            # version 1.1.0, 3 keys: projected model, pixel-is-area, EPSG:32610; or
+            # geographic model, pixel-is-area, EPSG:4326
+            (34735, "SHORT", [1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326]
+             if geographic else
+             [1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32610]),
         ]
     if nodata is not None:
         entries.append((42113, "ASCII", (str(nodata) + "\0").encode()))

@@ -11,7 +11,7 @@ import shutil
 import subprocess
 import sys
 
-SKIP = 77  # CTest SKIP_RETURN_CODE
+from gmmdata import SKIP  # noqa: F401 (CTest SKIP_RETURN_CODE)
 
 
 def setup():
@@ -67,3 +67,61 @@ def fail(msg):
 def check(cond, msg):
     if not cond:
         fail(msg)
+
+
+def measured_flight(argv, every=1):
+    """Runs geomipmap-fly in this process (cli.main(argv): the command's own code, flight,
+    cameras, CSV and PNG output; only the launcher script is left out) and measures every
+    `every`-th frame it renders, independently of the engine's bound
+    (gmmtestutil.measure_drawn). Returns (exit status, stdout, stderr, [(frame, stats,
+    Measured or None)]), stats being the values the frame's CSV row was written from."""
+    import contextlib
+    import io
+
+    from geomipmap_fly import cli, scene
+    from gmmtestutil import measure_drawn
+
+    frames = []
+    render = scene.Scene.render
+
+    def measuring_render(self):
+        stats = render(self)
+        m = None
+        if len(frames) % every == 0:
+            image = self.mapper.GetInputDataObject(0, 0)
+            m = measure_drawn(image, self.renderer, self.actor, self.mapper.GetPixelError(),
+                              self.mapper.GetBlockSize())
+        frames.append((len(frames), stats, m))
+        return stats
+
+    so, se = io.StringIO(), io.StringIO()
+    scene.Scene.render = measuring_render
+    try:
+        with contextlib.redirect_stdout(so), contextlib.redirect_stderr(se):
+            rc = cli.main(list(argv))
+    finally:
+        scene.Scene.render = render
+    return rc, so.getvalue(), se.getvalue(), frames
+
+
+def check_measured(frames, rows, tau):
+    """For frames from measured_flight and the CSV rows that flight wrote: one row per
+    frame with the frame's triangle count, and on every measured frame the filter's copy is
+    the drawn mesh, something is in view and the measured screen error is within tau."""
+    check(len(frames) == len(rows), f"{len(frames)} frames rendered, {len(rows)} CSV rows")
+    worst, measured = 0.0, 0
+    for (f, stats, m), row in zip(frames, rows):
+        check(stats["triangles"] == int(row["triangles"]),
+              f"frame {f}: {stats['triangles']} triangles drawn, CSV says {row['triangles']}")
+        if m is None:
+            continue
+        print(f"frame {f}: {m!r}")
+        check(m.triangles == stats["triangles"], f"frame {f}: filter {m.triangles} triangles, "
+              f"mapper {stats['triangles']}: not the drawn mesh")
+        check(m.in_view > 0, f"frame {f}: nothing in view")
+        check(m.error_px <= tau + 1e-6,
+              f"frame {f}: measured screen error {m.error_px:.4f} px > tau {tau}")
+        worst, measured = max(worst, m.error_px), measured + 1
+    check(measured > 0, "no frame measured")
+    print(f"measured screen error over {measured} frames: at most {worst:.4f} px (tau {tau})")
+    return worst

@@ -6,7 +6,6 @@ vtkGeoMipMapTerrainReader did to the raster; both depend only on the image, not 
 rendering.
 """
 
-import math
 import os
 
 import numpy as np
@@ -120,45 +119,33 @@ class Heights:
 
 
 class GeoFrame:
-    """Geographic (lon, lat) -> the reader's local metric frame, from its field data.
+    """Geographic (lon, lat) <-> the reader's local metric frame, by the reader itself.
 
-    The reader (see vtkGeoMipMapTerrainReader.h) puts (0, 0) at the south-west sample
-    (lon0, lat0) = field "GeographicOrigin" and uses, with lat_c the latitude of the DEM's
-    centre and M, N the WGS84 meridional / prime-vertical radii (GeographicLib's
-    ellipsoid): x = (lon - lon0) * pi/180 * N(lat_c) * cos(lat_c),
-    y = (lat - lat0) * pi/180 * M(lat_c). lat_c is recovered from the image: the
-    north-south extent H (metres) spans H / M(lat_c) radians, solved by fixed point.
+    vtkGeoMipMapTerrainReader resamples lon/lat rasters onto a regular grid in a local
+    transverse Mercator frame (see its header) and records it in the field data
+    ("GeographicOrigin", "CentralMeridian"); its static GeographicToLocal /
+    LocalToGeographic convert with that frame, so waypoints land exactly where the reader
+    put the terrain.
     """
 
     def __init__(self, image, heights):
-        arr = image.GetFieldData().GetArray("GeographicOrigin")
-        if arr is None or arr.GetNumberOfValues() < 2:
+        fd = image.GetFieldData()
+        arr = fd.GetArray("GeographicOrigin")
+        if arr is None or arr.GetNumberOfValues() < 2 or fd.GetArray("CentralMeridian") is None:
             raise FlyError("waypoints are geographic (lon/lat) but the DEM has no geographic "
                            "origin (not a lon/lat raster); give local x,y in metres")
-        from geographiclib.geodesic import Geodesic
+        import geomipmap
 
+        self.image = image
+        self.reader = geomipmap.vtkGeoMipMapTerrainReader
         self.lon0, self.lat0 = arr.GetValue(0), arr.GetValue(1)
-        self.a, self.f = Geodesic.WGS84.a, Geodesic.WGS84.f
-        ox, oy = heights.ox, heights.oy  # the reader's origin (0, 0) unless it changes
-        self.ox, self.oy = ox, oy
-        half = 0.5 * (heights.ny - 1) * heights.dy
-        lat_c = self.lat0
-        for _ in range(8):
-            lat_c = self.lat0 + math.degrees(half / self.radii(lat_c)[0])
-        self.lat_c = lat_c
-        m, n = self.radii(lat_c)
-        self.kx = math.radians(1.0) * n * math.cos(math.radians(lat_c))
-        self.ky = math.radians(1.0) * m
-
-    def radii(self, lat_deg):
-        """(M, N): WGS84 meridional and prime-vertical radii of curvature at lat_deg."""
-        e2 = self.f * (2 - self.f)
-        s2 = math.sin(math.radians(lat_deg)) ** 2
-        w = math.sqrt(1 - e2 * s2)
-        return self.a * (1 - e2) / w ** 3, self.a / w
 
     def to_local(self, lon, lat):
-        return (self.ox + (lon - self.lon0) * self.kx, self.oy + (lat - self.lat0) * self.ky)
+        xy = [0.0, 0.0]
+        self.reader.GeographicToLocal(self.image, float(lon), float(lat), xy)
+        return (xy[0], xy[1])
 
     def to_geographic(self, x, y):
-        return (self.lon0 + (x - self.ox) / self.kx, self.lat0 + (y - self.oy) / self.ky)
+        ll = [0.0, 0.0]
+        self.reader.LocalToGeographic(self.image, float(x), float(y), ll)
+        return (ll[0], ll[1])
