@@ -260,13 +260,21 @@ std::string vtkGeoMipMapSampleTexture::UploadTiles(vtkOpenGLRenderWindow* win, F
       {
         const int i0 = tx * layout.tileW, j0 = ty * layout.tileH;
         const int w = std::min(layout.tileW, layout.nx - i0), h = std::min(layout.tileH, layout.ny - j0);
-        const void* pixels = nullptr;
-        int rowLength = w;
-        source(i0, j0, w, h, pixels, rowLength, scratch);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength == w ? 0 : rowLength);
-        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, ty * layout.tilesX + tx, w, h, 1, gl.format,
-          gl.type, pixels);
-        err = glGetError();
+        // In bands of rows: data converted or computed on the way (scratch) never takes
+        // more than about kBandBytes, whatever the DEM's size.
+        constexpr size_t kBandBytes = size_t(16) << 20;
+        const int band = static_cast<int>(std::max<size_t>(1, kBandBytes / (static_cast<size_t>(w) * 8)));
+        for (int jb = 0; jb < h && err == GL_NO_ERROR; jb += band)
+        {
+          const int hb = std::min(band, h - jb);
+          const void* pixels = nullptr;
+          int rowLength = w;
+          source(i0, j0 + jb, w, hb, pixels, rowLength, scratch);
+          glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength == w ? 0 : rowLength);
+          glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, jb, ty * layout.tilesX + tx, w, hb, 1,
+            gl.format, gl.type, pixels);
+          err = glGetError();
+        }
       }
     }
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
