@@ -621,6 +621,18 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
 }
 
 //------------------------------------------------------------------------------
+vtkUnsignedCharArray* vtkGeoMipMapMapper::MapScalars(double alpha)
+{
+  int cellFlag = 0;
+  return this->MapScalars(alpha, cellFlag);
+}
+
+vtkUnsignedCharArray* vtkGeoMipMapMapper::MapScalars(double alpha, int& cellFlag)
+{
+  return this->Superclass::MapScalars(this->Internal->Proxy, alpha, cellFlag);
+}
+
+//------------------------------------------------------------------------------
 bool vtkGeoMipMapMapper::GetNeedToRebuildBufferObjects(vtkRenderer*, vtkActor* act)
 {
   // Same watch list as vtkOpenGLPolyDataMapper, except mapper changes that only alter

@@ -201,6 +201,17 @@ public:
   void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
   void ReleaseGraphicsResources(vtkWindow* win) override;
 
+  ///@{
+  /**
+   * VTK's buffer build maps the mapper's input to per-vertex colours (4 bytes a sample
+   * here); colours come from the fragment shader instead, so only the scalar-free proxy
+   * vertex is mapped.
+   */
+  using Superclass::MapScalars;
+  vtkUnsignedCharArray* MapScalars(double alpha) override;
+  vtkUnsignedCharArray* MapScalars(double alpha, int& cellFlag) override;
+  ///@}
+
 protected:
   vtkGeoMipMapMapper();
   ~vtkGeoMipMapMapper() override;
