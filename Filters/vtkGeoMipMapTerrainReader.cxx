@@ -1,5 +1,7 @@
 #include "vtkGeoMipMapTerrainReader.h"
 
+#include "vtkGeoMipMapConversion.h"
+
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -97,6 +99,25 @@ int vtkGeoMipMapTerrainReader::RequestData(
   output->Initialize(); // a failed read must not leave the previous file's heights behind
   this->UpdateProgress(0.0);
   gmm::TerrainRaster raster;
+  {
+    // Refuse before allocating what the machine cannot hold (see SetMemoryLimit).
+    gmm::TerrainRaster header;
+    if (gmm::readTerrainHeader(name, this->Internal->Options(this), header).empty())
+    {
+      const double samples = static_cast<double>(header.nx) * header.ny;
+      const double need = samples * sizeof(float) * (header.geographic ? 3.0 : 2.0);
+      const double have = this->MemoryLimit > 0 ? static_cast<double>(this->MemoryLimit)
+                                                : vtkGeoMipMapConversion::AvailableMemoryBytes();
+      if (have > 0 && need > have)
+      {
+        vtkErrorMacro(<< "Cannot read '" << name << "': its " << header.nx << " x " << header.ny
+                      << " samples need about " << need / 1048576.0 << " MiB to read, more than the "
+                      << have / 1048576.0 << " MiB "
+                      << (this->MemoryLimit > 0 ? "of MemoryLimit" : "available") << ".");
+        return 0;
+      }
+    }
+  }
   const std::string problem = gmm::readTerrain(name, this->Internal->Options(this), raster,
     [this](double f) { this->UpdateProgress(0.95 * f); });
   if (!problem.empty())
@@ -202,5 +223,6 @@ void vtkGeoMipMapTerrainReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "HeightOffset: " << this->HeightOffset << "\n";
   os << indent << "Spacing: " << this->Spacing << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "TerrainRGB: " << (this->TerrainRGB ? "On" : "Off") << "\n";
 }

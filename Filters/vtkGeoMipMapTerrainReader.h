@@ -131,6 +131,18 @@ public:
 
   ///@{
   /**
+   * Memory, in bytes, a read may take (0, default: the memory available on this machine
+   * now). Before reading the samples the reader estimates what the read needs (the
+   * heights twice while they are handed over, once more for a geographic raster's
+   * resampling) and refuses a file that does not fit, with an error naming the file, its
+   * size and the memory available.
+   */
+  vtkSetMacro(MemoryLimit, vtkTypeInt64);
+  vtkGetMacro(MemoryLimit, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /**
    * Geographic rasters: lon/lat (degrees, WGS84) to the image's x, y (metres) and back,
    * using the field data of an image this reader produced. Return false (and leave the
    * output untouched) when the image has no "GeographicOrigin" / "CentralMeridian".
@@ -158,6 +170,7 @@ protected:
   double HeightOffset = 0.0;
   double Spacing = 1.0;
   vtkTypeBool TerrainRGB = 0;
+  vtkTypeInt64 MemoryLimit = 0;
 
 private:
   vtkGeoMipMapTerrainReader(const vtkGeoMipMapTerrainReader&) = delete;

@@ -123,6 +123,22 @@ for f, opts in bad:
     if not update(reader) or reader.GetOutput().GetDimensions() != (3, 2, 1):
         failures.append("good file after " + os.path.basename(f))
 rss1 = max_rss_mb()
+
+# A good file larger than the memory limit: refused before its samples are read, with an
+# error naming the file, its size and the limit; read once the limit is lifted.
+big = write("big.asc", "ncols 300\nnrows 200\nxllcorner 0\nyllcorner 0\ncellsize 30\n" +
+            "\n".join(" ".join(str((i * j) % 97) for i in range(300)) for j in range(200)) + "\n")
+reader.SetFileName(big)
+reader.SetMemoryLimit(200000)  # 300 x 200 floats, twice: 480000 bytes
+errors.clear()
+refused = not update(reader)
+text = " ".join(errors.messages)
+check(refused and "big.asc" in text and "300 x 200" in text and "MemoryLimit" in text,
+      "a file over MemoryLimit is refused with its name and size (%s)" % text[-160:])
+reader.SetMemoryLimit(0)
+errors.clear()
+check(update(reader) and reader.GetOutput().GetDimensions() == (300, 200, 1),
+      "the same file reads with the limit lifted")
 shutil.rmtree(tmp, ignore_errors=True)
 check(not failures, "every bad file fails with an error naming it (bad: %s)" % failures)
 print("%d bad files; largest peak-memory rise in one file: %.1f MB (%s)"
