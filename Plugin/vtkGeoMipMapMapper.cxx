@@ -421,9 +421,9 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   Internals& in = *this->Internal;
   // GPU data belong to one context: drawing in another window frees them there first
   // (VTK's stock mappers do the same through a callback whose header Debian does not ship).
-  if (in.Window && in.Window != win)
+  if (in.Window != win)
   {
-    this->ReleaseWindowResources();
+    this->ReleaseWindowResources(); // frees in the old window, or forgets a vanished one's
     win->MakeCurrent();
   }
   in.Window = win;
@@ -811,6 +811,7 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
     p->SetUniform2f("gmmSpacing", spacing);
   }
   setf("gmmHeightScale", this->HeightScale);
+  setf("gmmInvGridX", 1.0 / hf.nx);
   set2i("gmmAnchor", in.AnchorI, in.AnchorJ);
   setf("gmmHeightRef", in.HeightRef);
   seti("gmmColors", in.ColorsUnit);
@@ -891,7 +892,14 @@ void vtkGeoMipMapMapper::ReleaseWindowResources()
   this->IndicesDirty = true;
   if (!win)
   {
-    return; // never drawn, or the window (and its context, with everything in it) is gone
+    // Never drawn, or the window (its context, with everything in it) is gone without
+    // telling us: forget the handles rather than use them in another context.
+    in.Heights.Forget();
+    in.Slopes.Forget();
+    in.Colors.Forget();
+    this->VBOBuildState.Clear();
+    this->IBOBuildState.Clear();
+    return;
   }
   win->PushContext();
   in.Heights.Release(win);

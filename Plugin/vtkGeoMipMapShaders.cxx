@@ -105,13 +105,12 @@ std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
   switch (o.Color)
   {
     case O::MapHeights:
+      // The drawn surface's own height, interpolated from the vertices: one lookup per
+      // fragment instead of four fetches. It differs from the full-resolution height by at
+      // most the frame's geometric error, a fraction of a colour step in practice.
       return std::string(kColorTable) +
-        "vec4 gmmColor(GmmQuad q)\n"
-        "{\n"
-        "  vec4 h = vec4(gmmHeight(q.c), gmmHeight(q.c + ivec2(1, 0)), gmmHeight(q.c + ivec2(0, 1)),\n"
-        "    gmmHeight(q.c + ivec2(1, 1)));\n"
-        "  return gmmMapScalar(dot(q.w, h));\n"
-        "}\n";
+        "in float gmmHeightVSOutput;\n"
+        "vec4 gmmColor(GmmQuad q) { return gmmMapScalar(gmmHeightVSOutput); }\n";
     case O::MapScalars:
       return std::string(kColorTable) +
         "uniform highp sampler2DArray gmmScalars;\n"
@@ -180,14 +179,31 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   vtkShaderProgram::Substitute(vs, "//GMM::Dec",
     FetchFunctions(o) +
       "uniform ivec2 gmmAnchor;      // sample at the model-coordinate origin\n"
+      "uniform float gmmInvGridX;    // 1 / nx\n"
       "uniform float gmmHeightRef;   // stored height at the model-coordinate origin\n"
-      "out vec2 gmmGridVSOutput;\n");
+      "out vec2 gmmGridVSOutput;\n" +
+      (o.Color == Options::MapHeights ? "out float gmmHeightVSOutput;\n" : ""));
+  // Sample (i, j) of vertex id j * nx + i without an integer division (scalarised, hence
+  // slow, on software rasterisers): a float estimate of j (relative error 2^-24), refined
+  // once from its remainder (now small enough to be exact in float), then corrected by one;
+  // exact for every id < 2^32 whatever nx (checked against integer division in numpy for
+  // shapes from 2 x 2^31 to 2^31 x 3).
   std::string begin = "  uint gmmId = uint(gl_VertexID);\n"
-                      "  ivec2 gmmIJ = ivec2(int(gmmId % uint(gmmGridSize.x)), "
-                      "int(gmmId / uint(gmmGridSize.x)));\n"
+                      "  int gmmJ = int(float(gmmId) * gmmInvGridX);\n"
+                      "  int gmmI = int(gmmId - uint(gmmJ) * uint(gmmGridSize.x));\n"
+                      "  gmmJ += int(floor(float(gmmI) * gmmInvGridX));\n"
+                      "  gmmI = int(gmmId - uint(gmmJ) * uint(gmmGridSize.x));\n"
+                      "  if (gmmI < 0) { gmmJ -= 1; gmmI += gmmGridSize.x; }\n"
+                      "  else if (gmmI >= gmmGridSize.x) { gmmJ += 1; gmmI -= gmmGridSize.x; }\n"
+                      "  ivec2 gmmIJ = ivec2(gmmI, gmmJ);\n"
+                      "  float gmmH = gmmHeight(gmmIJ);\n"
                       "  vertexMC = vec4(vec2(gmmIJ - gmmAnchor) * gmmSpacing,\n"
-                      "    (gmmHeight(gmmIJ) - gmmHeightRef) * gmmHeightScale, 1.0);\n"
+                      "    (gmmH - gmmHeightRef) * gmmHeightScale, 1.0);\n"
                       "  gmmGridVSOutput = vec2(gmmIJ);\n";
+  if (o.Color == Options::MapHeights)
+  {
+    begin += "  gmmHeightVSOutput = gmmH;\n";
+  }
   if (o.TextureCoordinates)
   {
     begin += "  tcoord = vec2(gmmIJ) / vec2(max(gmmGridSize - 1, ivec2(1)));\n";
@@ -198,9 +214,15 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   // (VTK's geometry templates emit input vertex i).
   if (!gs.empty())
   {
-    vtkShaderProgram::Substitute(
-      gs, "void main()", "in vec2 gmmGridVSOutput[];\nout vec2 gmmGridGSOutput;\nvoid main()", false);
-    vtkShaderProgram::Substitute(gs, "EmitVertex();", "gmmGridGSOutput = gmmGridVSOutput[i];\n    EmitVertex();");
+    std::string dec = "in vec2 gmmGridVSOutput[];\nout vec2 gmmGridGSOutput;\n";
+    std::string pass = "gmmGridGSOutput = gmmGridVSOutput[i];\n";
+    if (o.Color == Options::MapHeights)
+    {
+      dec += "in float gmmHeightVSOutput[];\nout float gmmHeightGSOutput;\n";
+      pass += "gmmHeightGSOutput = gmmHeightVSOutput[i];\n";
+    }
+    vtkShaderProgram::Substitute(gs, "void main()", dec + "void main()", false);
+    vtkShaderProgram::Substitute(gs, "EmitVertex();", pass + "    EmitVertex();");
   }
 
   // Fragment shader: full-resolution normal and colour at the fragment's grid position,

@@ -323,6 +323,14 @@ void vtkGeoMipMapSampleTexture::Release(vtkWindow* win)
   this->SourceTime = 0;
 }
 
+void vtkGeoMipMapSampleTexture::Forget()
+{
+  this->Handle = 0;
+  this->Bytes = 0;
+  this->Source = nullptr;
+  this->SourceTime = 0;
+}
+
 //------------------------------------------------------------------------------
 int vtkGeoMipMapColorTable::EntriesFor(vtkScalarsToColors* lut)
 {

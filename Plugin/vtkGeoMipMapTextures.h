@@ -108,6 +108,9 @@ public:
   /** Deletes the texture; `win`'s context must be current (the mapper pushes it). */
   void Release(vtkWindow* win);
 
+  /** Drops the handle without a GL call: its context (window) is gone, and it with it. */
+  void Forget();
+
 private:
   vtkGeoMipMapSampleTexture(const vtkGeoMipMapSampleTexture&) = delete;
   void operator=(const vtkGeoMipMapSampleTexture&) = delete;

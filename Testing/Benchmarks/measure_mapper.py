@@ -11,7 +11,8 @@ Steps, each timed: generate the DEM (vtkGeoMipMapFractalSource; int16 = the same
 rounded, converted in row bands so no second float copy is held), first frame (the
 terrain's tables, the height upload and the first LOD and draw), then an orbit of
 --frames frames at tau = 1, 1280 x 720 (median frame time, Render + glFinish). Prints one
-JSON object. Works with the earlier, vertex-buffer mapper too (absent statistics are
+JSON object; frame_cpu_ms is the process's CPU time per frame (all threads, llvmpipe's
+included), which other processes' load does not inflate as it does wall time. Works with the earlier, vertex-buffer mapper too (absent statistics are
 null), so the two can be compared on the same flights.
 """
 import json
@@ -116,16 +117,23 @@ def main(argv):
                       ("gpu_bytes", "GetGPUMemoryBytes")):
         out[key] = getattr(mapper, name)() if hasattr(mapper, name) else None
     out["rss_after_first_frame_mb"] = rss_mb()
-    times, tris = [], []
+    times, cpu, tris = [], [], []
+
+    def cpu_s():
+        r = resource.getrusage(resource.RUSAGE_SELF)
+        return r.ru_utime + r.ru_stime
+
     for f in range(frames):
         place(f)
-        t = time.perf_counter()
+        t, c = time.perf_counter(), cpu_s()
         win.Render()
         win.WaitForCompletion()
         times.append((time.perf_counter() - t) * 1000.0)
+        cpu.append((cpu_s() - c) * 1000.0)  # all threads: robust to other processes' load
         tris.append(mapper.GetNumberOfRenderedTriangles())
     out["frame_ms_median"] = statistics.median(times)
     out["frame_ms_mean"] = statistics.mean(times)
+    out["frame_cpu_ms_median"] = statistics.median(cpu)
     out["lod_ms_last"] = mapper.GetLastUpdateTime() * 1000.0
     out["triangles_mean"] = statistics.mean(tris)
     out["peak_rss_mb"] = peak_mb()

@@ -27,13 +27,7 @@ import refscene
 TAU = 1.0
 BG = (0.1, 0.1, 0.2)
 W, H = 480, 320
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+check = refscene.Checks()
 
 
 data = gmmtestutil.data_dir_or_skip()
@@ -131,5 +125,4 @@ for name, scale in CASES:
           f"{name}: measured error {measure.GetMaximumError():.3f} px over "
           f"{measure.GetNumberOfSamplesInView()} samples (tau {TAU})")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

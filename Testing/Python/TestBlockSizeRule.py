@@ -17,13 +17,7 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer
 import geomipmap
 import refscene
 
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+check = refscene.Checks()
 
 
 class Errors:
@@ -88,5 +82,4 @@ if len(sys.argv) > 1:
     check("4..1024" in text and "2..1024" not in text,
           "geomipmap-fly --help states the block size range 4..1024")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

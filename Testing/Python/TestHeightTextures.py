@@ -29,13 +29,7 @@ import refscene
 
 W, H = 480, 320
 BG = (0.1, 0.1, 0.2)
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+check = refscene.Checks()
 
 
 def image_of(z, spacing=30.0, origin=(0.0, 0.0, 0.0), name="Elevation"):
@@ -213,5 +207,4 @@ errors.clear()
 frame(a)
 check(m.GetNumberOfRenderedTriangles() > 0 and not errors, "limit lifted: drawn")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

@@ -23,13 +23,7 @@ import refscene
 
 BG = (0.1, 0.1, 0.2)
 W, H = 320, 240
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+check = refscene.Checks()
 
 
 src = geomipmap.vtkGeoMipMapFractalSource()
@@ -156,5 +150,4 @@ for sentence in limits:
     check(not named, f"header limitation {sentence!r} names {named}, shown working here")
 print(f"header: {len(limits)} limitation sentence(s) checked")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

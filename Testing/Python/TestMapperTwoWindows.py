@@ -16,13 +16,7 @@ from geomipmap.geomipmapRendering import vtkGeoMipMapMapper
 import refscene
 
 BG = (0.1, 0.1, 0.2)
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+check = refscene.Checks()
 
 
 src = vtkGeoMipMapFractalSource()
@@ -88,5 +82,4 @@ wins[0][1].Render()
 check(mapper.GetNumberOfRenderedTriangles() > 0, "second window draws after the first closed")
 check(refscene.covered(refscene.grab(wins[0][1]), BG).sum() > 0, "second window shows terrain")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

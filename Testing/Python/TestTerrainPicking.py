@@ -26,13 +26,7 @@ import gmmtestutil
 import refscene
 
 W, H = 400, 300
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        print("FAIL: " + what)
-        failures.append(what)
+check = refscene.Checks(verbose=False)
 
 
 data = gmmtestutil.data_dir_or_skip()
@@ -140,5 +134,4 @@ check(picker.GetActor() is ball, "the sphere in front of the terrain is picked")
 check(math.dist(picker.GetPickPosition(), stock.GetPickPosition()) < 1e-6,
       f"sphere pick {picker.GetPickPosition()} equals the stock pick {stock.GetPickPosition()}")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

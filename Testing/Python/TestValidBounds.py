@@ -18,13 +18,7 @@ import geomipmap
 import gmmtestutil
 import refscene
 
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+check = refscene.Checks()
 
 
 def expected(image):
@@ -78,5 +72,4 @@ mapper.SetInputData(empty)
 b = mapper.GetBounds()
 check(b[0] > b[1], f"all-nodata image: uninitialised bounds, got {b}")
 
-print("PASS" if not failures else f"{len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+check.exit()

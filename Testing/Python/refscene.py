@@ -6,6 +6,8 @@ plain numpy and vtkPolyData (the same diagonal the engine uses, quads touching n
 out, point id = image point id), drawn by a stock vtkPolyDataMapper: what the terrain
 looks like without level of detail.
 """
+import sys
+
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
@@ -114,3 +116,23 @@ def dilate(mask, r):
         for dx in range(-r, r + 1):
             out |= np.roll(np.roll(mask, dy, axis=0), dx, axis=1)
     return out
+
+
+class Checks:
+    """Collects named checks: prints each ("ok: ..." / "FAIL: ..."), and exit() ends the
+    test with status 1 when any failed."""
+
+    def __init__(self, verbose=True):
+        self.failures = []
+        self.verbose = verbose
+
+    def __call__(self, cond, what):
+        if self.verbose or not cond:
+            print(("ok: " if cond else "FAIL: ") + what)
+        if not cond:
+            self.failures.append(what)
+        return cond
+
+    def exit(self):
+        print("PASS" if not self.failures else f"{len(self.failures)} failure(s)")
+        sys.exit(1 if self.failures else 0)
