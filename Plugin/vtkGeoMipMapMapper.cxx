@@ -598,6 +598,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
     }
     lut->Build();
     in.Table.Update(win, lut, lut->GetRange());
+    in.Shading.LogScale = in.Table.GetLogScale();
   }
   if (scalars == heights && !direct)
   {
@@ -824,7 +825,7 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
     const double lo = log ? std::log10(r[0]) : r[0];
     const double hi = log ? std::log10(r[1]) : r[1];
     const float map[4] = { static_cast<float>(lo), static_cast<float>(hi > lo ? 1.0 / (hi - lo) : 1.0),
-      log ? 1.0f : 0.0f, static_cast<float>(in.Table.GetEntries()) };
+      0.0f, static_cast<float>(in.Table.GetEntries()) };
     p->SetUniform4f("gmmColorMap", map);
   }
 

@@ -49,55 +49,67 @@ std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
   return s;
 }
 
-// The fragment's level-0 quad (Tessellate.h's split along its (0,0)-(1,1) diagonal) and
-// the weights of the triangle under the fragment on its corners (one of them 0).
+// The fragment's level-0 triangle (Tessellate.h's quad split along its (0,0)-(1,1)
+// diagonal): its vertices c, c + d, c + (1, 1) and their barycentric weights.
 const char* const kQuad =
   "in vec2 gmmGridVSOutput;\n"
   "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n"
-  "struct GmmQuad { ivec2 c; vec4 w; }; // w: corners 00, 10, 01, 11\n"
-  "GmmQuad gmmQuad(vec2 g)\n"
+  "struct GmmTri { ivec2 c; ivec2 d; vec3 w; };\n"
+  "GmmTri gmmTriangle(vec2 g)\n"
   "{\n"
-  "  GmmQuad q;\n"
+  "  GmmTri t;\n"
   "  vec2 gc = clamp(g, vec2(0.0), vec2(gmmGridSize - 1));\n"
-  "  q.c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
-  "  vec2 f = gc - vec2(q.c);\n"
-  "  q.w = f.x >= f.y ? vec4(1.0 - f.x, f.x - f.y, 0.0, f.y) : vec4(1.0 - f.y, 0.0, f.y - f.x, f.x);\n"
-  "  return q;\n"
+  "  t.c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
+  "  vec2 f = gc - vec2(t.c);\n"
+  "  bool lower = f.x >= f.y;\n"
+  "  t.d = lower ? ivec2(1, 0) : ivec2(0, 1);\n"
+  "  t.w = lower ? vec3(1.0 - f.x, f.x - f.y, f.y) : vec3(1.0 - f.y, f.y - f.x, f.x);\n"
+  "  return t;\n"
   "}\n";
 
 // Normals from the slope texture (central differences as vtkGeoMipMapConversion::
-// SampleNormal computes them, made once at upload), interpolated with the triangle's
-// weights as the full-resolution mesh interpolates its vertex normals.
+// SampleNormal computes them, made once at upload): the slopes of the triangle's three
+// samples are interpolated with its weights, then scaled and normalised once. (The
+// full-resolution mesh interpolates unit normals instead; the two differ by a fraction of
+// a degree where the slopes vary fast within one quad.)
 const char* const kNormal =
   "uniform highp sampler2DArray gmmSlopes;\n"
-  "vec3 gmmSampleNormal(ivec2 ij)\n"
+  "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n"
+  "vec3 gmmNormalMC(GmmTri t)\n"
   "{\n"
-  "  vec2 g = gmmHeightScale * texelFetch(gmmSlopes, gmmTexel(ij), 0).rg;\n"
-  "  return normalize(vec3(-g, 1.0));\n"
-  "}\n"
-  "vec3 gmmNormalMC(GmmQuad q)\n"
+  "  vec2 g = t.w.x * gmmSlope(t.c) + t.w.y * gmmSlope(t.c + t.d) + t.w.z * gmmSlope(t.c + ivec2(1));\n"
+  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
+  "}\n";
+// One layer: the slopes bilinearly filtered at the fragment (one fetch; the exact
+// triangle interpolation above takes three, and differs from it by a fraction of a degree).
+const char* const kNormalBilinear =
+  "uniform highp sampler2DArray gmmSlopes;\n"
+  "vec3 gmmNormalMC(GmmTri t)\n"
   "{\n"
-  "  return q.w.x * gmmSampleNormal(q.c) + q.w.y * gmmSampleNormal(q.c + ivec2(1, 0)) +\n"
-  "    q.w.z * gmmSampleNormal(q.c + ivec2(0, 1)) + q.w.w * gmmSampleNormal(q.c + ivec2(1, 1));\n"
+  "  vec2 g = texture(gmmSlopes, vec3((gmmGridVSOutput + 0.5) * gmmTileScale, 0.0)).rg;\n"
+  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
 
 // Lookup-table colours: texel 0 below range, 1..n the bins, n + 1 above, n + 2 NaN.
-const char* const kColorTable =
-  "uniform sampler2D gmmColorTable;\n"
-  "uniform vec4 gmmColorMap; // range low, 1 / range width, log scale (0/1), bins\n"
-  "vec4 gmmMapScalar(float s)\n"
-  "{\n"
-  "  int n = int(gmmColorMap.w);\n"
-  "  int k = n + 2;\n"
-  "  if (gmmValid(s))\n"
-  "  {\n"
-  "    float v = s;\n"
-  "    if (gmmColorMap.z > 0.5) { v = s > 0.0 ? log(s) / log(10.0) : -1.0e38; }\n"
-  "    float t = (v - gmmColorMap.x) * gmmColorMap.y;\n"
-  "    k = t < 0.0 ? 0 : (t > 1.0 ? n + 1 : 1 + min(int(t * float(n)), n - 1));\n"
-  "  }\n"
-  "  return texelFetch(gmmColorTable, ivec2(k, 0), 0);\n"
-  "}\n";
+std::string ColorTable(const vtkGeoMipMapShaders::Options& o)
+{
+  std::string s = "uniform sampler2D gmmColorTable;\n"
+                  "uniform vec4 gmmColorMap; // range low, 1 / range width, unused, bins\n"
+                  "vec4 gmmMapScalar(float s)\n"
+                  "{\n"
+                  "  int n = int(gmmColorMap.w);\n"
+                  "  int k = n + 2;\n"
+                  "  if (gmmValid(s))\n"
+                  "  {\n";
+  s += o.LogScale ? "    float v = s > 0.0 ? log(s) * 0.43429448190325176 : -1.0e38; // log10\n"
+                  : "    float v = s;\n";
+  s += "    float t = (v - gmmColorMap.x) * gmmColorMap.y;\n"
+       "    k = t < 0.0 ? 0 : (t > 1.0 ? n + 1 : 1 + min(int(t * float(n)), n - 1));\n"
+       "  }\n"
+       "  return texelFetch(gmmColorTable, ivec2(k, 0), 0);\n"
+       "}\n";
+  return s;
+}
 
 std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
 {
@@ -106,28 +118,26 @@ std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
   {
     case O::MapHeights:
       // The drawn surface's own height, interpolated from the vertices: one lookup per
-      // fragment instead of four fetches. It differs from the full-resolution height by at
+      // fragment instead of three fetches. It differs from the full-resolution height by at
       // most the frame's geometric error, a fraction of a colour step in practice.
-      return std::string(kColorTable) +
+      return ColorTable(o) +
         "in float gmmHeightVSOutput;\n"
-        "vec4 gmmColor(GmmQuad q) { return gmmMapScalar(gmmHeightVSOutput); }\n";
+        "vec4 gmmColor(GmmTri t) { return gmmMapScalar(gmmHeightVSOutput); }\n";
     case O::MapScalars:
-      return std::string(kColorTable) +
+      return ColorTable(o) +
         "uniform highp sampler2DArray gmmScalars;\n"
         "float gmmScalar(ivec2 ij) { return texelFetch(gmmScalars, gmmTexel(ij), 0).r; }\n"
-        "vec4 gmmColor(GmmQuad q)\n"
+        "vec4 gmmColor(GmmTri t)\n"
         "{\n"
-        "  vec4 s = vec4(gmmScalar(q.c), gmmScalar(q.c + ivec2(1, 0)), gmmScalar(q.c + ivec2(0, 1)),\n"
-        "    gmmScalar(q.c + ivec2(1, 1)));\n"
-        "  return gmmMapScalar(dot(q.w, s));\n"
+        "  return gmmMapScalar(t.w.x * gmmScalar(t.c) + t.w.y * gmmScalar(t.c + t.d) +\n"
+        "    t.w.z * gmmScalar(t.c + ivec2(1)));\n"
         "}\n";
     case O::DirectColors:
       return "uniform highp sampler2DArray gmmColors;\n"
              "vec4 gmmRGBA(ivec2 ij) { return texelFetch(gmmColors, gmmTexel(ij), 0); }\n"
-             "vec4 gmmColor(GmmQuad q)\n"
+             "vec4 gmmColor(GmmTri t)\n"
              "{\n"
-             "  return q.w.x * gmmRGBA(q.c) + q.w.y * gmmRGBA(q.c + ivec2(1, 0)) +\n"
-             "    q.w.z * gmmRGBA(q.c + ivec2(0, 1)) + q.w.w * gmmRGBA(q.c + ivec2(1, 1));\n"
+             "  return t.w.x * gmmRGBA(t.c) + t.w.y * gmmRGBA(t.c + t.d) + t.w.z * gmmRGBA(t.c + ivec2(1));\n"
              "}\n";
     default:
       return std::string();
@@ -142,7 +152,8 @@ namespace vtkGeoMipMapShaders
 std::string Options::Key() const
 {
   return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
-    (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n");
+    (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n") +
+    (this->LogScale ? "l" : "-");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
@@ -230,11 +241,15 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   const bool lit = fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos;
   const bool colored = o.Color != Options::PropertyColor;
   vtkShaderProgram::Substitute(fs, "//GMM::Dec",
-    FetchFunctions(o) + kQuad + (lit ? kNormal : "") + ColorFunctions(o));
-  std::string color = lit || colored ? "  GmmQuad gmmQ = gmmQuad(gmmGridVSOutput);\n" : "";
+    FetchFunctions(o) + kQuad + (lit ? (o.SingleLayer ? kNormalBilinear : kNormal) : "") + ColorFunctions(o));
+  // The level-0 triangle under the fragment, where full-resolution values are interpolated
+  // per fragment (colouring arrays; normals of DEMs in several layers).
+  const bool triangle = (colored && o.Color != Options::MapHeights) || (lit && !o.SingleLayer);
+  std::string color = triangle ? "  GmmTri gmmT = gmmTriangle(gmmGridVSOutput);\n"
+                               : "  GmmTri gmmT;\n";
   if (colored)
   {
-    color += "  vec4 gmmC = gmmColor(gmmQ);\n"
+    color += "  vec4 gmmC = gmmColor(gmmT);\n"
              "  ambientColor = ambientIntensity * gmmC.rgb;\n"
              "  diffuseColor = diffuseIntensity * gmmC.rgb;\n"
              "  opacity = opacityUniform * gmmC.a;\n";
@@ -244,7 +259,7 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   if (lit)
   {
     vtkShaderProgram::Substitute(fs, "//VTK::Normal::Impl",
-      "  normalVCVSOutput = normalize(normalMatrix * gmmNormalMC(gmmQ));\n"
+      "  normalVCVSOutput = normalize(normalMatrix * gmmNormalMC(gmmT));\n"
       "  if (gl_FrontFacing == false) { normalVCVSOutput = -normalVCVSOutput; }\n"
       "//VTK::Normal::Impl");
   }

@@ -43,6 +43,7 @@ struct Options
   } Color = PropertyColor;
   bool TextureCoordinates = false; // the actor is textured
   bool SingleLayer = true;         // the heights fit one texture layer
+  bool LogScale = false;           // the lookup table maps log10 of the scalars
 
   /** A short string that differs when the shader source must differ. */
   std::string Key() const;

@@ -247,6 +247,11 @@ std::string vtkGeoMipMapSampleTexture::UploadTiles(vtkOpenGLRenderWindow* win, F
   this->Unit->Activate();
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+  if (format == Slopes16F)
+  {
+    this->Unit->SetMinificationFilter(vtkTextureObject::Linear);
+    this->Unit->SetMagnificationFilter(vtkTextureObject::Linear);
+  }
   glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, gl.internal, layout.tileW, layout.tileH, layout.Layers(), 0,
     gl.format, gl.type, nullptr);
   GLenum err = glGetError();

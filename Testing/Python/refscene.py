@@ -103,6 +103,16 @@ def grab(win):
     return vtk_to_numpy(img.GetPointData().GetScalars()).reshape(h, w, 3).copy()
 
 
+def depth(win):
+    """The window's depth buffer as a (height, width) float array."""
+    from vtkmodules.vtkCommonCore import vtkFloatArray
+
+    w, h = win.GetSize()
+    buf = vtkFloatArray()
+    win.GetZbufferData(0, 0, w - 1, h - 1, buf)
+    return vtk_to_numpy(buf).reshape(h, w).copy()
+
+
 def covered(pixels, background):
     """Mask of pixels that differ from the background colour (0..1 floats)."""
     bg = np.round(np.asarray(background) * 255).astype(int)
