@@ -3,7 +3,7 @@
 #include "vtkGeoMipMapConversion.h"
 #include "vtkGeoMipMapShaders.h"
 #include "vtkGeoMipMapTerrain.h"
-#include "vtkGeoMipMapTextures.h"
+#include "vtkGeoMipMapGPUTerrain.h"
 
 #include "vtkActor.h"
 #include "vtkCommand.h"
@@ -56,61 +56,6 @@ double SecondsSince(Clock::time_point start)
 }
 }
 
-namespace
-{
-// x, y bounds of the rows and columns that hold a valid sample; false when none does.
-// Blocks without nodata are taken whole; only blocks with nodata are scanned.
-bool ValidSampleBounds(const gmm::Terrain& t, double xy[4])
-{
-  const gmm::Heightfield& hf = t.hf;
-  std::vector<uint8_t> colValid(hf.nx, 0), rowValid(hf.ny, 0);
-  bool any = false;
-  for (int b = 0; b < t.qt.blockCount(); ++b)
-  {
-    const int c = b % t.qt.blockCols, r = b / t.qt.blockCols;
-    const int i0 = t.qt.colStart[c], i1 = t.qt.colStart[c + 1];
-    const int j0 = t.qt.rowStart[r], j1 = t.qt.rowStart[r + 1];
-    if (!t.qt.blockHasNodata[b])
-    {
-      std::fill(colValid.begin() + i0, colValid.begin() + i1 + 1, 1);
-      std::fill(rowValid.begin() + j0, rowValid.begin() + j1 + 1, 1);
-      any = true;
-      continue;
-    }
-    for (int j = j0; j <= j1; ++j)
-    {
-      for (int i = i0; i <= i1; ++i)
-      {
-        if (!std::isnan(hf.height(i, j)))
-        {
-          colValid[i] = rowValid[j] = 1;
-          any = true;
-        }
-      }
-    }
-  }
-  xy[0] = xy[2] = VTK_DOUBLE_MAX;
-  xy[1] = xy[3] = -VTK_DOUBLE_MAX;
-  for (int i = 0; i < hf.nx; ++i)
-  {
-    if (colValid[i])
-    {
-      xy[0] = std::min(xy[0], hf.worldX(i));
-      xy[1] = std::max(xy[1], hf.worldX(i));
-    }
-  }
-  for (int j = 0; j < hf.ny; ++j)
-  {
-    if (rowValid[j])
-    {
-      xy[2] = std::min(xy[2], hf.worldY(j));
-      xy[3] = std::max(xy[3], hf.worldY(j));
-    }
-  }
-  return any;
-}
-} // namespace
-
 struct vtkGeoMipMapMapper::Internals
 {
   gmm::Engine Engine;
@@ -122,15 +67,8 @@ struct vtkGeoMipMapMapper::Internals
 
   // GPU data, all in the context of Window.
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
-  vtkGeoMipMapTileLayout Layout;
-  vtkGeoMipMapSampleTexture Heights;
-  vtkGeoMipMapSampleTexture Slopes; // for the fragment normals, while lit
-  vtkGeoMipMapSampleTexture Colors; // a second colouring array (scalars or RGBA)
-  vtkGeoMipMapColorTable Table;
-  vtkGeoMipMapShaders::Options Shading;
+  vtkGeoMipMapGPUTerrain GPU;
   std::map<const vtkOpenGLHelper*, std::string> ShaderKeys; // per helper: key built for
-  int HeightsUnit = -1, SlopesUnit = -1, ColorsUnit = -1, TableUnit = -1;
-  bool Lit = false;
   bool ReportedCellScalars = false;
 
   // Model coordinates are relative to the anchor sample (near the camera) and a reference
@@ -260,9 +198,7 @@ bool vtkGeoMipMapMapper::GetIndicesReused() const
 vtkTypeInt64 vtkGeoMipMapMapper::GetGPUMemoryBytes() const
 {
   const Internals& in = *this->Internal;
-  return static_cast<vtkTypeInt64>(
-    in.Heights.GetBytes() + in.Slopes.GetBytes() + in.Colors.GetBytes() + in.Table.GetBytes() +
-    in.IndexBytes);
+  return static_cast<vtkTypeInt64>(in.GPU.GetBytes() + in.IndexBytes);
 }
 
 //------------------------------------------------------------------------------
@@ -272,7 +208,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   // Refuse before anything large is allocated: the tables are small next to the samples,
   // so the estimate is the textures plus a float copy when the heights cannot be shared.
   vtkDataArray* heights = image->GetPointData()->GetScalars();
-  if (heights && (!in.Terrain || in.Terrain->GetHeights() != heights || !in.Heights.HasData()))
+  if (heights && (!in.Terrain || in.Terrain->GetHeights() != heights || !in.GPU.HasHeights()))
   {
     const double samples = static_cast<double>(image->GetNumberOfPoints());
     const auto format = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
@@ -345,7 +281,7 @@ void vtkGeoMipMapMapper::ComputeBounds()
   if (in.BoundsOf != &t)
   {
     in.BoundsOf = &t;
-    in.AnyValid = ValidSampleBounds(t, in.ValidXY);
+    in.AnyValid = gmm::validSampleBounds(t, in.ValidXY);
   }
   if (!in.AnyValid)
   {
@@ -513,7 +449,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   {
     pd->RemoveArray("TCoords");
   }
-  in.Shading.TextureCoordinates = textured;
+  in.GPU.SetTextureCoordinates(textured);
 
   this->CurrentInput = in.Proxy;
   this->RenderPieceStart(ren, act); // may rebuild buffers, and then the IBO through BuildIBO
@@ -529,95 +465,56 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
 bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData* image, vtkActor* act)
 {
   Internals& in = *this->Internal;
-  const gmm::Heightfield& hf = in.Engine.heightfield();
-  vtkDataArray* heights = in.Terrain->GetHeights();
-  GLint maxLayers = 256;
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
-  if (this->MaximumTileSize > 0)
-  {
-    maxSize = std::min(maxSize, this->MaximumTileSize);
-  }
-  std::string err = in.Layout.Plan(hf.nx, hf.ny, maxSize, maxLayers);
-  const auto heightFormat = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
-  if (err.empty() && !in.Heights.IsCurrent(heights, heightFormat, in.Layout))
-  {
-    const auto start = Clock::now();
-    err = in.Heights.Upload(win, heights, heightFormat, in.Layout);
-    this->LastHeightUploadTime = SecondsSince(start);
-    ++this->NumberOfHeightUploads;
-  }
-  // Slopes for the fragment normals, only while lit (made from the engine's float heights).
-  in.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
-  if (err.empty() && in.Lit &&
-    !in.Slopes.IsCurrent(heights, vtkGeoMipMapSampleTexture::Slopes16F, in.Layout))
-  {
-    const auto start = Clock::now();
-    err = in.Slopes.UploadSlopes(win, hf.heights(), hf.dx, hf.dy, heights, in.Layout);
-    this->LastHeightUploadTime += SecondsSince(start);
-  }
-  if (!err.empty())
-  {
-    vtkErrorMacro("Cannot store the heights on the GPU: " << err);
-    return false;
-  }
-  using O = vtkGeoMipMapShaders::Options;
-  in.Shading.SingleLayer = in.Layout.Layers() == 1;
-  in.Shading.HeightFormat = heightFormat == vtkGeoMipMapSampleTexture::Int16 ? O::Int16Heights
-    : heightFormat == vtkGeoMipMapSampleTexture::UInt16                     ? O::UInt16Heights
-                                                                             : O::FloatHeights;
-
+  vtkGeoMipMapGPUTerrain::Inputs gpu;
+  gpu.Heights = in.Terrain->GetHeights();
+  gpu.HF = &in.Engine.heightfield();
+  gpu.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
+  gpu.MaximumTileSize = this->MaximumTileSize;
   // Colouring: the array VTK's own mappers would colour by, on the GPU as well.
-  in.Shading.Color = O::PropertyColor;
   int cellFlag = 0;
-  vtkDataArray* scalars = this->ScalarVisibility
+  gpu.Color = this->ScalarVisibility
     ? vtkAbstractMapper::GetScalars(image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId,
         this->ArrayName, cellFlag)
     : nullptr;
-  if (scalars && cellFlag)
+  if (gpu.Color && cellFlag)
   {
     if (!in.ReportedCellScalars)
     {
       vtkErrorMacro("Colouring by cell scalars is not supported; the actor's colour is used.");
       in.ReportedCellScalars = true;
     }
-    scalars = nullptr;
+    gpu.Color = nullptr;
   }
-  if (!scalars)
+  if (gpu.Color)
   {
-    return true;
-  }
-  const bool direct = scalars->GetDataType() == VTK_UNSIGNED_CHAR &&
-    this->ColorMode != VTK_COLOR_MODE_MAP_SCALARS;
-  if (!direct)
-  {
-    vtkScalarsToColors* lut = this->GetLookupTable();
-    if (!this->UseLookupTableScalarRange)
+    gpu.DirectColors = gpu.Color->GetDataType() == VTK_UNSIGNED_CHAR &&
+      this->ColorMode != VTK_COLOR_MODE_MAP_SCALARS;
+    if (!gpu.DirectColors)
     {
-      lut->SetRange(this->ScalarRange);
-    }
-    lut->Build();
-    in.Table.Update(win, lut, lut->GetRange());
-    in.Shading.LogScale = in.Table.GetLogScale();
-  }
-  if (scalars == heights && !direct)
-  {
-    in.Shading.Color = O::MapHeights;
-    return true;
-  }
-  const auto format = vtkGeoMipMapSampleTexture::FormatFor(scalars, direct);
-  const auto stored = direct ? format : vtkGeoMipMapSampleTexture::Float32;
-  if (!in.Colors.IsCurrent(scalars, stored, in.Layout))
-  {
-    err = in.Colors.Upload(win, scalars, stored, in.Layout);
-    ++this->NumberOfHeightUploads;
-    if (!err.empty())
-    {
-      vtkErrorMacro("Cannot store the colouring array on the GPU: " << err);
-      return true; // draw with the actor's colour
+      gpu.Lookup = this->GetLookupTable();
+      if (!this->UseLookupTableScalarRange)
+      {
+        gpu.Lookup->SetRange(this->ScalarRange);
+      }
+      gpu.Lookup->Build();
     }
   }
-  in.Shading.Color = direct ? O::DirectColors : O::MapScalars;
+  const vtkGeoMipMapGPUTerrain::Result r = in.GPU.Update(win, gpu);
+  this->NumberOfHeightUploads += r.Uploads;
+  if (r.Uploads)
+  {
+    this->LastHeightUploadTime = r.UploadSeconds;
+  }
+  if (!r.HeightsError.empty())
+  {
+    vtkErrorMacro("Cannot store the heights on the GPU: " << r.HeightsError);
+    return false;
+  }
+  if (!r.ColorError.empty())
+  {
+    vtkErrorMacro("Cannot store the colouring array on the GPU (the actor's colour is used): "
+      << r.ColorError);
+  }
   return true;
 }
 
@@ -711,16 +608,7 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
-  in.HeightsUnit = in.Heights.Activate();
-  in.SlopesUnit = in.Lit && in.Slopes.HasData() ? in.Slopes.Activate() : -1;
-  in.ColorsUnit = in.Shading.Color == vtkGeoMipMapShaders::Options::MapScalars ||
-      in.Shading.Color == vtkGeoMipMapShaders::Options::DirectColors
-    ? in.Colors.Activate()
-    : -1;
-  in.TableUnit = in.Shading.Color == vtkGeoMipMapShaders::Options::MapHeights ||
-      in.Shading.Color == vtkGeoMipMapShaders::Options::MapScalars
-    ? in.Table.Activate()
-    : -1;
+  in.GPU.Bind();
 
   const int representation = act->GetProperty()->GetRepresentation();
   this->DrawingVertices = false;
@@ -738,20 +626,7 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   // vertex, while the indices address every sample.
   glDrawElements(mode, static_cast<GLsizei>(tris.IBO->IndexCount), GL_UNSIGNED_INT, nullptr);
   tris.IBO->Release();
-
-  if (in.TableUnit >= 0)
-  {
-    in.Table.Deactivate();
-  }
-  if (in.ColorsUnit >= 0)
-  {
-    in.Colors.Deactivate();
-  }
-  if (in.SlopesUnit >= 0)
-  {
-    in.Slopes.Deactivate();
-  }
-  in.Heights.Deactivate();
+  in.GPU.Unbind();
 }
 
 //------------------------------------------------------------------------------
@@ -760,8 +635,8 @@ void vtkGeoMipMapMapper::ReplaceShaderValues(
 {
   vtkGeoMipMapShaders::PrepareTemplates(shaders);
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
-  vtkGeoMipMapShaders::InsertTerrainCode(shaders, this->Internal->Shading);
-  this->Internal->ShaderKeys[this->LastBoundBO] = this->Internal->Shading.Key();
+  vtkGeoMipMapShaders::InsertTerrainCode(shaders, this->Internal->GPU.GetShading());
+  this->Internal->ShaderKeys[this->LastBoundBO] = this->Internal->GPU.GetShading().Key();
 }
 
 bool vtkGeoMipMapMapper::GetNeedToRebuildShaders(
@@ -772,7 +647,7 @@ bool vtkGeoMipMapMapper::GetNeedToRebuildShaders(
     return true;
   }
   auto it = this->Internal->ShaderKeys.find(&cellBO);
-  return it == this->Internal->ShaderKeys.end() || it->second != this->Internal->Shading.Key();
+  return it == this->Internal->ShaderKeys.end() || it->second != this->Internal->GPU.GetShading().Key();
 }
 
 //------------------------------------------------------------------------------
@@ -782,52 +657,8 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
   Internals& in = *this->Internal;
   vtkShaderProgram* p = cellBO.Program;
-  const gmm::Heightfield& hf = in.Engine.heightfield();
-  auto seti = [p](const char* name, int v) {
-    if (p->IsUniformUsed(name))
-      p->SetUniformi(name, v);
-  };
-  auto set2i = [p](const char* name, int a, int b) {
-    const int v[2] = { a, b };
-    if (p->IsUniformUsed(name))
-      p->SetUniform2i(name, v);
-  };
-  auto setf = [p](const char* name, double v) {
-    if (p->IsUniformUsed(name))
-      p->SetUniformf(name, static_cast<float>(v));
-  };
-  seti("gmmHeights", in.HeightsUnit);
-  seti("gmmSlopes", in.SlopesUnit);
-  set2i("gmmGridSize", hf.nx, hf.ny);
-  set2i("gmmTileSize", in.Layout.tileW, in.Layout.tileH);
-  seti("gmmTilesX", in.Layout.tilesX);
-  const float tileScale[2] = { 1.0f / in.Layout.tileW, 1.0f / in.Layout.tileH };
-  if (p->IsUniformUsed("gmmTileScale"))
-  {
-    p->SetUniform2f("gmmTileScale", tileScale);
-  }
-  const float spacing[2] = { static_cast<float>(hf.dx), static_cast<float>(hf.dy) };
-  if (p->IsUniformUsed("gmmSpacing"))
-  {
-    p->SetUniform2f("gmmSpacing", spacing);
-  }
-  setf("gmmHeightScale", this->HeightScale);
-  setf("gmmInvGridX", 1.0 / hf.nx);
-  set2i("gmmAnchor", in.AnchorI, in.AnchorJ);
-  setf("gmmHeightRef", in.HeightRef);
-  seti("gmmColors", in.ColorsUnit);
-  seti("gmmScalars", in.ColorsUnit);
-  seti("gmmColorTable", in.TableUnit);
-  if (p->IsUniformUsed("gmmColorMap"))
-  {
-    const double* r = in.Table.GetRange();
-    const bool log = in.Table.GetLogScale();
-    const double lo = log ? std::log10(r[0]) : r[0];
-    const double hi = log ? std::log10(r[1]) : r[1];
-    const float map[4] = { static_cast<float>(lo), static_cast<float>(hi > lo ? 1.0 / (hi - lo) : 1.0),
-      0.0f, static_cast<float>(in.Table.GetEntries()) };
-    p->SetUniform4f("gmmColorMap", map);
-  }
+  in.GPU.SetUniforms(
+    p, in.Engine.heightfield(), this->HeightScale, in.AnchorI, in.AnchorJ, in.HeightRef);
 
   // Clipping planes in model coordinates, which are relative to the anchor.
   if (this->GetNumberOfClippingPlanes() && p->IsUniformUsed("clipPlanes"))
@@ -895,18 +726,13 @@ void vtkGeoMipMapMapper::ReleaseWindowResources()
   {
     // Never drawn, or the window (its context, with everything in it) is gone without
     // telling us: forget the handles rather than use them in another context.
-    in.Heights.Forget();
-    in.Slopes.Forget();
-    in.Colors.Forget();
+    in.GPU.Forget();
     this->VBOBuildState.Clear();
     this->IBOBuildState.Clear();
     return;
   }
   win->PushContext();
-  in.Heights.Release(win);
-  in.Slopes.Release(win);
-  in.Colors.Release(win);
-  in.Table.Release(win);
+  in.GPU.Release(win);
   // What vtkOpenGLPolyDataMapper::ReleaseGraphicsResources frees, which it only does
   // through its unregistered callback (see RenderPiece).
   this->VBOs->ReleaseGraphicsResources(win);

@@ -38,4 +38,9 @@ using ProgressFn = std::function<void(double)>;
 std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
   std::shared_ptr<const Terrain>& out, const ProgressFn& progress = nullptr);
 
+// x, y bounds (xmin, xmax, ymin, ymax) of the rows and columns of `t` that hold a valid
+// (non-NaN) sample; false when none does. Blocks without nodata are taken whole, only
+// blocks with nodata are scanned.
+bool validSampleBounds(const Terrain& t, double xy[4]);
+
 } // namespace gmm

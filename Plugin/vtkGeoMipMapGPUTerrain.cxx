@@ -1,0 +1,195 @@
+// VTK-HeaderTest-Exclude: vtkGeoMipMapGPUTerrain.cxx
+#include "vtkGeoMipMapGPUTerrain.h"
+
+#include "vtkDataArray.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkScalarsToColors.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "Heightfield.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace
+{
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
+  vtkOpenGLRenderWindow* win, const Inputs& in)
+{
+  using O = vtkGeoMipMapShaders::Options;
+  Result r;
+  const gmm::Heightfield& hf = *in.HF;
+  GLint maxLayers = 256;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
+  if (in.MaximumTileSize > 0)
+  {
+    maxSize = std::min(maxSize, in.MaximumTileSize);
+  }
+  r.HeightsError = this->Layout.Plan(hf.nx, hf.ny, maxSize, maxLayers);
+  const auto heightFormat = vtkGeoMipMapSampleTexture::FormatFor(in.Heights, false);
+  if (r.HeightsError.empty() && !this->Heights.IsCurrent(in.Heights, heightFormat, this->Layout))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    r.HeightsError = this->Heights.Upload(win, in.Heights, heightFormat, this->Layout);
+    r.UploadSeconds += SecondsSince(start);
+    ++r.Uploads;
+  }
+  // Slopes for the fragment normals, only while lit (made from the engine's float heights).
+  this->Lit = in.Lit;
+  if (r.HeightsError.empty() && in.Lit &&
+    !this->Slopes.IsCurrent(in.Heights, vtkGeoMipMapSampleTexture::Slopes16F, this->Layout))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    r.HeightsError = this->Slopes.UploadSlopes(win, hf.heights(), hf.dx, hf.dy, in.Heights, this->Layout);
+    r.UploadSeconds += SecondsSince(start);
+  }
+  if (!r.HeightsError.empty())
+  {
+    return r;
+  }
+  this->Shading.SingleLayer = this->Layout.Layers() == 1;
+  this->Shading.HeightFormat = heightFormat == vtkGeoMipMapSampleTexture::Int16 ? O::Int16Heights
+    : heightFormat == vtkGeoMipMapSampleTexture::UInt16                         ? O::UInt16Heights
+                                                                                 : O::FloatHeights;
+
+  this->Shading.Color = O::PropertyColor;
+  if (!in.Color)
+  {
+    return r;
+  }
+  if (!in.DirectColors)
+  {
+    this->Table.Update(win, in.Lookup, in.Lookup->GetRange());
+    this->Shading.LogScale = this->Table.GetLogScale();
+    if (in.Color == in.Heights)
+    {
+      this->Shading.Color = O::MapHeights;
+      return r;
+    }
+  }
+  const auto stored = in.DirectColors ? vtkGeoMipMapSampleTexture::RGBA8 : vtkGeoMipMapSampleTexture::Float32;
+  if (!this->Colors.IsCurrent(in.Color, stored, this->Layout))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    r.ColorError = this->Colors.Upload(win, in.Color, stored, this->Layout);
+    r.UploadSeconds += SecondsSince(start);
+    ++r.Uploads;
+    if (!r.ColorError.empty())
+    {
+      return r;
+    }
+  }
+  this->Shading.Color = in.DirectColors ? O::DirectColors : O::MapScalars;
+  return r;
+}
+
+//------------------------------------------------------------------------------
+size_t vtkGeoMipMapGPUTerrain::GetBytes() const
+{
+  return this->Heights.GetBytes() + this->Slopes.GetBytes() + this->Colors.GetBytes() +
+    this->Table.GetBytes();
+}
+
+void vtkGeoMipMapGPUTerrain::Bind()
+{
+  using O = vtkGeoMipMapShaders::Options;
+  const O::Coloring c = this->Shading.Color;
+  this->HeightsUnit = this->Heights.Activate();
+  this->SlopesUnit = this->Lit && this->Slopes.HasData() ? this->Slopes.Activate() : -1;
+  this->ColorsUnit = c == O::MapScalars || c == O::DirectColors ? this->Colors.Activate() : -1;
+  this->TableUnit = c == O::MapHeights || c == O::MapScalars ? this->Table.Activate() : -1;
+}
+
+void vtkGeoMipMapGPUTerrain::Unbind()
+{
+  if (this->TableUnit >= 0)
+  {
+    this->Table.Deactivate();
+  }
+  if (this->ColorsUnit >= 0)
+  {
+    this->Colors.Deactivate();
+  }
+  if (this->SlopesUnit >= 0)
+  {
+    this->Slopes.Deactivate();
+  }
+  this->Heights.Deactivate();
+  this->HeightsUnit = this->SlopesUnit = this->ColorsUnit = this->TableUnit = -1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightfield& hf,
+  double heightScale, int anchorI, int anchorJ, float heightRef) const
+{
+  auto seti = [p](const char* name, int v) {
+    if (p->IsUniformUsed(name))
+      p->SetUniformi(name, v);
+  };
+  auto set2i = [p](const char* name, int a, int b) {
+    const int v[2] = { a, b };
+    if (p->IsUniformUsed(name))
+      p->SetUniform2i(name, v);
+  };
+  auto setf = [p](const char* name, double v) {
+    if (p->IsUniformUsed(name))
+      p->SetUniformf(name, static_cast<float>(v));
+  };
+  auto set2f = [p](const char* name, double a, double b) {
+    const float v[2] = { static_cast<float>(a), static_cast<float>(b) };
+    if (p->IsUniformUsed(name))
+      p->SetUniform2f(name, v);
+  };
+  seti("gmmHeights", this->HeightsUnit);
+  seti("gmmSlopes", this->SlopesUnit);
+  seti("gmmColors", this->ColorsUnit);
+  seti("gmmScalars", this->ColorsUnit);
+  seti("gmmColorTable", this->TableUnit);
+  set2i("gmmGridSize", hf.nx, hf.ny);
+  setf("gmmInvGridX", 1.0 / hf.nx);
+  set2i("gmmTileSize", this->Layout.tileW, this->Layout.tileH);
+  set2f("gmmTileScale", 1.0 / this->Layout.tileW, 1.0 / this->Layout.tileH);
+  seti("gmmTilesX", this->Layout.tilesX);
+  set2f("gmmSpacing", hf.dx, hf.dy);
+  setf("gmmHeightScale", heightScale);
+  set2i("gmmAnchor", anchorI, anchorJ);
+  setf("gmmHeightRef", heightRef);
+  if (p->IsUniformUsed("gmmColorMap"))
+  {
+    const double* r = this->Table.GetRange();
+    const bool log = this->Table.GetLogScale();
+    const double lo = log ? std::log10(r[0]) : r[0];
+    const double hi = log ? std::log10(r[1]) : r[1];
+    const float map[4] = { static_cast<float>(lo),
+      static_cast<float>(hi > lo ? 1.0 / (hi - lo) : 1.0), 0.0f,
+      static_cast<float>(this->Table.GetEntries()) };
+    p->SetUniform4f("gmmColorMap", map);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapGPUTerrain::Release(vtkWindow* win)
+{
+  this->Heights.Release(win);
+  this->Slopes.Release(win);
+  this->Colors.Release(win);
+  this->Table.Release(win);
+}
+
+void vtkGeoMipMapGPUTerrain::Forget()
+{
+  this->Heights.Forget();
+  this->Slopes.Forget();
+  this->Colors.Forget();
+}
