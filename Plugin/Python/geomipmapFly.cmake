@@ -43,4 +43,14 @@ if(GEOMIPMAP_BUILD_TESTING)
       LABELS "python;fly"
       ENVIRONMENT "GEOMIPMAP_DATA_DIR=${_fly_data};GEOMIPMAP_DATA=${_fly_data};PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT}")
   endforeach()
+  # Waypoint parsing in-process (no command, no rendering): every case file.
+  foreach(_t IN ITEMS TestFlyWaypointFiles)
+    add_test(NAME geomipmapPython.${_t}
+      COMMAND /usr/bin/python3 "${_fly_tests}/${_t}.py" "${CMAKE_BINARY_DIR}/Testing/Python/${_t}"
+      WORKING_DIRECTORY "${CMAKE_BINARY_DIR}/Testing/Python")
+    set_tests_properties(geomipmapPython.${_t} PROPERTIES
+      TIMEOUT 120
+      LABELS "python;fly"
+      ENVIRONMENT "PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT}")
+  endforeach()
 endif()
