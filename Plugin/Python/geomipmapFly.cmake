@@ -43,8 +43,9 @@ if(GEOMIPMAP_BUILD_TESTING)
       LABELS "python;fly"
       ENVIRONMENT "GEOMIPMAP_DATA_DIR=${_fly_data};GEOMIPMAP_DATA=${_fly_data};PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT}")
   endforeach()
-  # Waypoint parsing in-process (no command, no rendering): every case file.
-  foreach(_t IN ITEMS TestFlyWaypointFiles)
+  # Waypoint parsing in-process (no command, no rendering): every case file, then seeded
+  # mutation fuzzing (15000 inputs, a few seconds).
+  foreach(_t IN ITEMS TestFlyWaypointFiles TestFlyWaypointFuzz)
     add_test(NAME geomipmapPython.${_t}
       COMMAND /usr/bin/python3 "${_fly_tests}/${_t}.py" "${CMAKE_BINARY_DIR}/Testing/Python/${_t}"
       WORKING_DIRECTORY "${CMAKE_BINARY_DIR}/Testing/Python")
