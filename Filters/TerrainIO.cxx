@@ -3,16 +3,20 @@
 #include "Heightfield.h" // gmm::kMaxHeight
 
 #include <GeographicLib/Ellipsoid.hpp>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_vsi.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <set>
@@ -31,6 +35,47 @@ constexpr double kMaxCompression = 1100.0;
 constexpr double kCompressedFloorBytes = 64.0 * 1024 * 1024;
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// GDAL drivers this reader knows by name. bytes: how few bytes a sample can take in their
+// files, for checkSize (any other driver is taken as compressed). oneFile: a dataset is
+// one file, so it can be read from memory; those are the only drivers GDALOpenEx may try
+// on bytes in memory (probing every driver costs more than reading a small file).
+enum class SampleBytes
+{
+  Text,           // at least a digit and a separator
+  Raw,            // the sample type's size
+  TiffCompressed, // the sample type's size unless the TIFF says it is compressed
+};
+struct KnownDriver
+{
+  const char* name;
+  SampleBytes bytes;
+  bool oneFile;
+};
+constexpr KnownDriver kKnownDrivers[] = {
+  { "GTiff", SampleBytes::TiffCompressed, true },
+  { "SRTMHGT", SampleBytes::Raw, true },
+  { "USGSDEM", SampleBytes::Text, true },
+  { "AAIGrid", SampleBytes::Text, true },
+  { "GRASSASCIIGrid", SampleBytes::Text, true },
+  { "XYZ", SampleBytes::Text, true },
+  { "ISG", SampleBytes::Text, true },
+  { "GXF", SampleBytes::Text, true },
+  { "BT", SampleBytes::Raw, true },
+  { "EHdr", SampleBytes::Raw, false }, // these need a header file beside the data
+  { "ENVI", SampleBytes::Raw, false },
+  { "GenBin", SampleBytes::Raw, false },
+  { "PAux", SampleBytes::Raw, false },
+};
+
+// What to read: a file, or bytes in memory standing for a file of that name.
+struct Input
+{
+  std::string name;
+  bool inMemory = false;
+  const void* data = nullptr; // inMemory only
+  std::size_t size = 0;       // inMemory only
+};
 
 // A scaled height as float; NaN (nodata) when not finite or beyond the engine's height
 // range (gmm::kMaxHeight, 1e38): such values are undeclared nodata sentinels (-FLT_MAX is
@@ -124,6 +169,68 @@ double footToMetre(const std::string& unit)
   return 1.0;
 }
 
+double minBytesPerSample(GDALDatasetH ds, const std::string& driver, GDALDataType type)
+{
+  for (const KnownDriver& d : kKnownDrivers)
+  {
+    if (driver == d.name)
+    {
+      const bool compressed = d.bytes == SampleBytes::TiffCompressed &&
+        GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE");
+      return d.bytes == SampleBytes::Text ? 2.0
+        : compressed                      ? 0.0
+                                          : GDALGetDataTypeSizeBytes(type);
+    }
+  }
+  return 0.0;
+}
+
+// The nullptr-terminated list of kKnownDrivers' one-file drivers, for GDALOpenEx.
+const char* const* oneFileDrivers()
+{
+  static const std::vector<const char*> list = [] {
+    std::vector<const char*> l;
+    for (const KnownDriver& d : kKnownDrivers)
+    {
+      if (d.oneFile)
+      {
+        l.push_back(d.name);
+      }
+    }
+    l.push_back(nullptr);
+    return l;
+  }();
+  return list.data();
+}
+
+// Bytes in memory as a GDAL /vsimem/ file (not copied) named like the file they stand for
+// (SRTMHGT needs the tile name), in a folder of its own; unlinked when this goes away.
+class VsiMemFile
+{
+public:
+  explicit VsiMemFile(const Input& in)
+  {
+    static std::atomic<unsigned long long> serial{ 0 };
+    const auto slash = in.name.find_last_of('/');
+    path_ = "/vsimem/geomipmap-" + std::to_string(++serial) + "/" +
+      (slash == std::string::npos ? in.name : in.name.substr(slash + 1));
+    // GDAL only reads it (the dataset is opened read-only): the const_cast is safe.
+    VSILFILE* f = VSIFileFromMemBuffer(path_.c_str(),
+      static_cast<GByte*>(const_cast<void*>(in.data)), static_cast<vsi_l_offset>(in.size), FALSE);
+    if (f)
+    {
+      VSIFCloseL(f);
+    }
+  }
+  ~VsiMemFile() { VSIUnlink(path_.c_str()); }
+  VsiMemFile(const VsiMemFile&) = delete;
+  VsiMemFile& operator=(const VsiMemFile&) = delete;
+  const std::string& path() const { return path_; }
+
+private:
+  std::string path_;
+};
+
 std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, double& unitToMetre)
 {
@@ -149,20 +256,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
     return std::string("is a colour (") + GDALGetColorInterpretationName(colour) +
       ") image, not a single-band heightmap";
   }
-  static const std::set<std::string> text = { "AAIGrid", "GRASSASCIIGrid", "USGSDEM", "XYZ",
-    "ISG", "GXF" };
-  static const std::set<std::string> raw = { "SRTMHGT", "EHdr", "ENVI", "GenBin", "BT", "PAux" };
-  double minBytes = 0.0;
-  if (text.count(driver))
-  {
-    minBytes = 2.0; // a digit and a separator
-  }
-  else if (raw.count(driver) ||
-    (driver == "GTiff" && !GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE")))
-  {
-    minBytes = GDALGetDataTypeSizeBytes(type);
-  }
-  std::string problem = checkSize(nx, ny, fileSize, minBytes);
+  std::string problem = checkSize(nx, ny, fileSize, minBytesPerSample(ds, driver, type));
   if (!problem.empty())
   {
     return problem;
@@ -254,18 +348,23 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
   return std::string();
 }
 
-std::string gdalRead(const std::string& path, double fileSize, const TerrainReadOptions& opt,
+std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>* progress)
 {
   static std::once_flag once;
   std::call_once(once, []() { GDALAllRegister(); });
   GdalErrors errors;
+  // Declared before the dataset, so that it is unlinked after the dataset is closed.
+  const std::unique_ptr<VsiMemFile> mem(in.inMemory ? new VsiMemFile(in) : nullptr);
+  const std::string& path = mem ? mem->path() : in.name;
   GdalDataset ds;
-  ds.h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  ds.h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+    mem ? oneFileDrivers() : nullptr, nullptr, nullptr);
   if (!ds.h)
   {
-    if (path.size() > 4 && (path.compare(path.size() - 4, 4, ".hgt") == 0 ||
-                             path.compare(path.size() - 4, 4, ".HGT") == 0))
+    const std::string& name = in.name;
+    if (name.size() > 4 && (name.compare(name.size() - 4, 4, ".hgt") == 0 ||
+                             name.compare(name.size() - 4, 4, ".HGT") == 0))
     {
       // GDAL recognises SRTM tiles by size alone: say which sizes would have worked.
       return "is not a raster GDAL can read: SRTM .hgt tiles are identified by size, e.g. "
@@ -339,11 +438,14 @@ void convertGrey(const T* src, int nx, int ny, double scale, double offset, floa
   }
 }
 
-std::string oiioRead(const std::string& path, double fileSize, const TerrainReadOptions& opt,
+std::string oiioRead(const Input& file, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>* progress)
 {
   using OIIO::TypeDesc;
-  auto in = OIIO::ImageInput::open(path);
+  // In memory: OpenImageIO picks the format from the name, and reads through the proxy,
+  // declared before the image, which must not outlive it.
+  OIIO::Filesystem::IOMemReader mem(file.data, file.inMemory ? file.size : 0);
+  auto in = OIIO::ImageInput::open(file.name, nullptr, file.inMemory ? &mem : nullptr);
   if (!in)
   {
     return "is not an image OpenImageIO can read (" + OIIO::geterror() + ")";
@@ -429,15 +531,10 @@ std::string oiioRead(const std::string& path, double fileSize, const TerrainRead
   return std::string();
 }
 
-std::string readAny(const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out,
-  const std::function<void(double)>* progress)
+// The size of a file on disk in bytes, or a sentence saying why it cannot be read.
+std::string fileSize(const std::string& path, double& size)
 {
-  out = TerrainRaster();
   struct stat st;
-  if (path.empty())
-  {
-    return "no file name was given";
-  }
   if (stat(path.c_str(), &st) != 0)
   {
     return "does not exist or cannot be accessed";
@@ -446,15 +543,35 @@ std::string readAny(const std::string& path, const TerrainReadOptions& opt, Terr
   {
     return "is not a regular file";
   }
-  if (st.st_size == 0)
+  size = static_cast<double>(st.st_size);
+  return std::string();
+}
+
+std::string readAny(const Input& in, const TerrainReadOptions& opt, TerrainRaster& out,
+  const std::function<void(double)>* progress)
+{
+  out = TerrainRaster();
+  if (in.name.empty())
+  {
+    return "no file name was given";
+  }
+  double size = static_cast<double>(in.size);
+  if (!in.inMemory)
+  {
+    const std::string problem = fileSize(in.name, size);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  if (size == 0.0)
   {
     return "is empty";
   }
   try
   {
-    const double size = static_cast<double>(st.st_size);
-    return hasImageExtension(path) ? oiioRead(path, size, opt, out, progress)
-                                   : gdalRead(path, size, opt, out, progress);
+    return hasImageExtension(in.name) ? oiioRead(in, size, opt, out, progress)
+                                      : gdalRead(in, size, opt, out, progress);
   }
   catch (const std::bad_alloc&)
   {
@@ -468,13 +585,25 @@ std::string readAny(const std::string& path, const TerrainReadOptions& opt, Terr
 std::string readTerrainHeader(
   const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out)
 {
-  return readAny(path, opt, out, nullptr);
+  return readAny(Input{ path }, opt, out, nullptr);
 }
 
 std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>& progress)
 {
-  return readAny(path, opt, out, &progress);
+  return readAny(Input{ path }, opt, out, &progress);
+}
+
+std::string readTerrainHeader(
+  const TerrainBytes& bytes, const TerrainReadOptions& opt, TerrainRaster& out)
+{
+  return readAny(Input{ bytes.name, true, bytes.data, bytes.size }, opt, out, nullptr);
+}
+
+std::string readTerrain(const TerrainBytes& bytes, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>& progress)
+{
+  return readAny(Input{ bytes.name, true, bytes.data, bytes.size }, opt, out, &progress);
 }
 
 } // namespace gmm
