@@ -424,17 +424,37 @@ std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions&
   return std::string();
 }
 
+// One image row of grey samples to heights.
 template <class T>
-void convertGrey(const T* src, int nx, int ny, double scale, double offset, float* z)
+void greyRow(const T* src, int nx, double scale, double offset, float* dst)
 {
+  for (int c = 0; c < nx; ++c)
+  {
+    dst[c] = toHeight(scale * static_cast<double>(src[c]) + offset);
+  }
+}
+
+// Grey samples of type T (buf: ny rows of nx) to heights z.
+template <class T>
+void convertGrey(const unsigned char* buf, int nx, int ny, double scale, double offset, float* z)
+{
+  const T* src = reinterpret_cast<const T*>(buf);
   for (int r = 0; r < ny; ++r) // image row 0 is the top (north): flip
   {
-    float* dst = z + static_cast<std::size_t>(ny - 1 - r) * nx;
-    for (int c = 0; c < nx; ++c)
-    {
-      const double v = static_cast<double>(src[static_cast<std::size_t>(r) * nx + c]);
-      dst[c] = toHeight(scale * v + offset);
-    }
+    greyRow(src + static_cast<std::size_t>(r) * nx, nx, scale, offset,
+      z + static_cast<std::size_t>(ny - 1 - r) * nx);
+  }
+}
+
+// Half floats: converted to float (exactly) by OpenImageIO, a row at a time.
+void convertGreyHalf(const unsigned char* buf, int nx, int ny, double scale, double offset, float* z)
+{
+  std::vector<float> row(static_cast<std::size_t>(nx));
+  for (int r = 0; r < ny; ++r)
+  {
+    OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, buf + static_cast<std::size_t>(r) * nx * 2,
+      OIIO::TypeDesc::FLOAT, row.data(), nx);
+    greyRow(row.data(), nx, scale, offset, z + static_cast<std::size_t>(ny - 1 - r) * nx);
   }
 }
 
@@ -491,11 +511,16 @@ std::string oiioRead(const Input& file, double fileSize, const TerrainReadOption
   const double scale = opt.heightScale, offset = opt.heightOffset;
   const TypeDesc f = spec.format;
   const bool isFloat = f == TypeDesc::HALF || f == TypeDesc::FLOAT || f == TypeDesc::DOUBLE;
-  // Integers are read in their own type: OpenImageIO would normalise them to [0, 1].
-  const TypeDesc readAs = isFloat ? TypeDesc(TypeDesc::FLOAT) : f;
+  // Samples are read in the file's own type (TypeDesc::UNKNOWN): integers must not be
+  // converted (OpenImageIO would normalise them to [0, 1]), and given any explicit type,
+  // even the file's own, OpenImageIO 2.4 converts through a temporary buffer of about 64 MB
+  // per call, whatever the image's size. Only channels of different types (possible in
+  // EXR) are converted by OpenImageIO: to float, or to the integer type f.
+  const bool mixed = !spec.channelformats.empty();
+  const TypeDesc readAs = mixed && isFloat ? TypeDesc(TypeDesc::FLOAT) : f;
   const int channels = rgb ? 3 : 1;
   std::vector<unsigned char> buf(n * channels * readAs.size());
-  if (!in->read_image(0, 0, 0, channels, readAs, buf.data()))
+  if (!in->read_image(0, 0, 0, channels, mixed ? readAs : TypeDesc(TypeDesc::UNKNOWN), buf.data()))
   {
     return "could not be decoded: truncated or corrupt (" + in->geterror() + ")";
   }
@@ -517,13 +542,15 @@ std::string oiioRead(const Input& file, double fileSize, const TerrainReadOption
   {
     switch (readAs.basetype)
     {
-      case TypeDesc::UINT8: convertGrey(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT8: convertGrey(reinterpret_cast<int8_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::UINT16: convertGrey(reinterpret_cast<uint16_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT16: convertGrey(reinterpret_cast<int16_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::UINT32: convertGrey(reinterpret_cast<uint32_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT32: convertGrey(reinterpret_cast<int32_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::FLOAT: convertGrey(reinterpret_cast<float*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT8: convertGrey<uint8_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT8: convertGrey<int8_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT16: convertGrey<uint16_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT16: convertGrey<int16_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT32: convertGrey<uint32_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT32: convertGrey<int32_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::HALF: convertGreyHalf(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::FLOAT: convertGrey<float>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::DOUBLE: convertGrey<double>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
       default: return std::string("has an unsupported sample type (") + f.c_str() + ")";
     }
   }
