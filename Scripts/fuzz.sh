@@ -28,7 +28,8 @@ mkdir -p "$build/logs"
 status=0
 for t in "${targets[@]}"; do
   case $t in
-    engine) exe=geomipmapFuzzEngine; args=(-max_len=4096) ;;
+    # 16384: grids up to 4096 samples (FuzzEngine.cpp, kBytesPerSample).
+    engine) exe=geomipmapFuzzEngine; args=(-max_len=16384) ;;
     # GDAL may take long on some inputs: bounded input size, time per input and memory.
     reader) exe=geomipmapFuzzTerrainReader
       args=(-max_len=65536 -rss_limit_mb=2048 -malloc_limit_mb=1024) ;;

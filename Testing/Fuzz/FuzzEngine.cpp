@@ -24,13 +24,13 @@ namespace
 using gmmfuzz::checkFrame;
 using gmmfuzz::violation;
 
-// At most this many samples per input byte. The work per input (error table, frames,
-// checks) grows with the grid, so the grid must grow with the input: before, 3 bytes could
-// name a 200 x 200 grid (40 000 samples, 0.3 s under ASan + UBSan), and libFuzzer's short
-// inputs cost as much as its longest (robustness.md has the figures). With 1 sample per
-// byte, -max_len=4096 still reaches every block shape (blocks up to 80 quads, grids up to
-// 64 x 64 or 200 x 20).
-constexpr std::size_t kSamplesPerByte = 1;
+// At most one sample per kBytesPerSample input bytes. The work per input (error table,
+// frames, checks) grows with the grid, so the grid must grow with the input: before, 3
+// bytes could name a 200 x 200 grid (40 000 samples, 0.3 s under ASan + UBSan), and
+// libFuzzer's short inputs cost as much as its longest (robustness.md has the figures).
+// With 4 bytes a sample, fuzz.sh's -max_len=16384 still reaches every block shape (blocks
+// up to 80 quads and level 7: grids up to 64 x 64 or 200 x 20).
+constexpr std::size_t kBytesPerSample = 4;
 
 // Heights: smooth ramp plus bytes from the input (so both flat and rough terrain occur), with
 // NaN holes: single samples, or whole rectangles. inputSize: the whole input's length.
@@ -38,9 +38,9 @@ gmm::Heightfield makeHeightfield(FuzzedDataProvider& in, std::size_t inputSize, 
 {
   gmm::Heightfield hf;
   // Mostly small grids (fast, many block-shape corner cases), sometimes up to 200 a side,
-  // and never more than kSamplesPerByte samples per input byte (at least 2 x 2).
+  // and never more than one sample per kBytesPerSample input bytes (at least 2 x 2).
   const int maxSide = in.ConsumeIntegralInRange<int>(0, 3) == 0 ? 200 : 48;
-  const std::size_t samples = std::max<std::size_t>(4, kSamplesPerByte * inputSize);
+  const std::size_t samples = std::max<std::size_t>(4, inputSize / kBytesPerSample);
   hf.nx = in.ConsumeIntegralInRange<int>(2, static_cast<int>(std::min<std::size_t>(maxSide, samples / 2)));
   hf.ny = in.ConsumeIntegralInRange<int>(2, static_cast<int>(std::min<std::size_t>(maxSide, samples / hf.nx)));
   const double sx = in.ConsumeIntegralInRange<int>(1, 1000) * 0.25;
