@@ -38,8 +38,9 @@ const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // GDAL drivers this reader knows by name. bytes: how few bytes a sample can take in their
 // files, for checkSize (any other driver is taken as compressed). oneFile: a dataset is
-// one file, so it can be read from memory; those are the only drivers GDALOpenEx may try
-// on bytes in memory (probing every driver costs more than reading a small file).
+// one file, so it can be read from memory. Bytes in memory are offered to those drivers
+// only: a format that needs a second file cannot be read from one buffer, and the other
+// drivers are formats this reader does not know (a file on disk may still be any raster).
 enum class SampleBytes
 {
   Text,           // at least a digit and a separator
