@@ -584,6 +584,10 @@ std::string readAny(const Input& in, const TerrainReadOptions& opt, TerrainRaste
     return "no file name was given";
   }
   double size = static_cast<double>(in.size);
+  if (in.inMemory && !in.data && in.size > 0)
+  {
+    return "was given as a null pointer with " + std::to_string(in.size) + " bytes";
+  }
   if (!in.inMemory)
   {
     const std::string problem = fileSize(in.name, size);

@@ -2,7 +2,7 @@
 // real DEM of ../shared/data and files of each one-file format written here must give the
 // same header, georeference, metadata and heights (bit for bit, NaN where NaN); formats
 // that need a second file fail in memory with the file path's message; bad buffers get
-// the file path's messages; and no /vsimem/ file is left behind.
+// the file path's messages (and a null pointer its own); no /vsimem/ file is left behind.
 #include "TerrainIO.h"
 
 #include <OpenImageIO/imageio.h>
@@ -251,7 +251,7 @@ TEST_F(TerrainIOMemory, FormatsWithASecondFileFailInMemory)
   expectNoMemFilesLeft();
 }
 
-TEST_F(TerrainIOMemory, BadBuffersGetTheFilePathsMessages)
+TEST_F(TerrainIOMemory, BadBuffersGetClearMessages)
 {
   gmm::TerrainRaster r;
   const gmm::TerrainReadOptions opt;
@@ -259,6 +259,8 @@ TEST_F(TerrainIOMemory, BadBuffersGetTheFilePathsMessages)
   EXPECT_EQ(gmm::readTerrainHeader(gmm::TerrainBytes{ junk, 0, "dem.tif" }, opt, r), "is empty");
   EXPECT_EQ(gmm::readTerrainHeader(gmm::TerrainBytes{ junk, sizeof junk, "" }, opt, r),
     "no file name was given");
+  EXPECT_EQ(gmm::readTerrainHeader(gmm::TerrainBytes{ nullptr, 100, "dem.tif" }, opt, r),
+    "was given as a null pointer with 100 bytes");
   const std::string hgt =
     gmm::readTerrainHeader(gmm::TerrainBytes{ junk, sizeof junk, "N42E001.hgt" }, opt, r);
   EXPECT_NE(hgt.find("SRTM .hgt tiles are identified by size"), std::string::npos) << hgt;
