@@ -6,16 +6,20 @@
 #include <GeographicLib/Ellipsoid.hpp>
 #include <GeographicLib/Math.hpp>
 #include <GeographicLib/TransverseMercator.hpp>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_vsi.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <set>
@@ -34,6 +38,48 @@ constexpr double kMaxCompression = 1100.0;
 constexpr double kCompressedFloorBytes = 64.0 * 1024 * 1024;
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// GDAL drivers this reader knows by name. bytes: how few bytes a sample can take in their
+// files, for checkSize (any other driver is taken as compressed). oneFile: a dataset is
+// one file, so it can be read from memory. Bytes in memory are offered to those drivers
+// only: a format that needs a second file cannot be read from one buffer, and the other
+// drivers are formats this reader does not know (a file on disk may still be any raster).
+enum class SampleBytes
+{
+  Text,           // at least a digit and a separator
+  Raw,            // the sample type's size
+  TiffCompressed, // the sample type's size unless the TIFF says it is compressed
+};
+struct KnownDriver
+{
+  const char* name;
+  SampleBytes bytes;
+  bool oneFile;
+};
+constexpr KnownDriver kKnownDrivers[] = {
+  { "GTiff", SampleBytes::TiffCompressed, true },
+  { "SRTMHGT", SampleBytes::Raw, true },
+  { "USGSDEM", SampleBytes::Text, true },
+  { "AAIGrid", SampleBytes::Text, true },
+  { "GRASSASCIIGrid", SampleBytes::Text, true },
+  { "XYZ", SampleBytes::Text, true },
+  { "ISG", SampleBytes::Text, true },
+  { "GXF", SampleBytes::Text, true },
+  { "BT", SampleBytes::Raw, true },
+  { "EHdr", SampleBytes::Raw, false }, // these need a header file beside the data
+  { "ENVI", SampleBytes::Raw, false },
+  { "GenBin", SampleBytes::Raw, false },
+  { "PAux", SampleBytes::Raw, false },
+};
+
+// What to read: a file, or bytes in memory standing for a file of that name.
+struct Input
+{
+  std::string name;
+  bool inMemory = false;
+  const void* data = nullptr; // inMemory only
+  std::size_t size = 0;       // inMemory only
+};
 
 // A scaled height as float; NaN (nodata) when not finite or beyond the engine's height
 // range (gmm::kMaxHeight, 1e38): such values are undeclared nodata sentinels (-FLT_MAX is
@@ -127,6 +173,68 @@ double footToMetre(const std::string& unit)
   return 1.0;
 }
 
+double minBytesPerSample(GDALDatasetH ds, const std::string& driver, GDALDataType type)
+{
+  for (const KnownDriver& d : kKnownDrivers)
+  {
+    if (driver == d.name)
+    {
+      const bool compressed = d.bytes == SampleBytes::TiffCompressed &&
+        GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE");
+      return d.bytes == SampleBytes::Text ? 2.0
+        : compressed                      ? 0.0
+                                          : GDALGetDataTypeSizeBytes(type);
+    }
+  }
+  return 0.0;
+}
+
+// The nullptr-terminated list of kKnownDrivers' one-file drivers, for GDALOpenEx.
+const char* const* oneFileDrivers()
+{
+  static const std::vector<const char*> list = [] {
+    std::vector<const char*> l;
+    for (const KnownDriver& d : kKnownDrivers)
+    {
+      if (d.oneFile)
+      {
+        l.push_back(d.name);
+      }
+    }
+    l.push_back(nullptr);
+    return l;
+  }();
+  return list.data();
+}
+
+// Bytes in memory as a GDAL /vsimem/ file (not copied) named like the file they stand for
+// (SRTMHGT needs the tile name), in a folder of its own; unlinked when this goes away.
+class VsiMemFile
+{
+public:
+  explicit VsiMemFile(const Input& in)
+  {
+    static std::atomic<unsigned long long> serial{ 0 };
+    const auto slash = in.name.find_last_of('/');
+    path_ = "/vsimem/geomipmap-" + std::to_string(++serial) + "/" +
+      (slash == std::string::npos ? in.name : in.name.substr(slash + 1));
+    // GDAL only reads it (the dataset is opened read-only): the const_cast is safe.
+    VSILFILE* f = VSIFileFromMemBuffer(path_.c_str(),
+      static_cast<GByte*>(const_cast<void*>(in.data)), static_cast<vsi_l_offset>(in.size), FALSE);
+    if (f)
+    {
+      VSIFCloseL(f);
+    }
+  }
+  ~VsiMemFile() { VSIUnlink(path_.c_str()); }
+  VsiMemFile(const VsiMemFile&) = delete;
+  VsiMemFile& operator=(const VsiMemFile&) = delete;
+  const std::string& path() const { return path_; }
+
+private:
+  std::string path_;
+};
+
 std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, double& unitToMetre)
 {
@@ -152,20 +260,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
     return std::string("is a colour (") + GDALGetColorInterpretationName(colour) +
       ") image, not a single-band heightmap";
   }
-  static const std::set<std::string> text = { "AAIGrid", "GRASSASCIIGrid", "USGSDEM", "XYZ",
-    "ISG", "GXF" };
-  static const std::set<std::string> raw = { "SRTMHGT", "EHdr", "ENVI", "GenBin", "BT", "PAux" };
-  double minBytes = 0.0;
-  if (text.count(driver))
-  {
-    minBytes = 2.0; // a digit and a separator
-  }
-  else if (raw.count(driver) ||
-    (driver == "GTiff" && !GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE")))
-  {
-    minBytes = GDALGetDataTypeSizeBytes(type);
-  }
-  std::string problem = checkSize(nx, ny, fileSize, minBytes);
+  std::string problem = checkSize(nx, ny, fileSize, minBytesPerSample(ds, driver, type));
   if (!problem.empty())
   {
     return problem;
@@ -261,18 +356,23 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
   return std::string();
 }
 
-std::string gdalRead(const std::string& path, double fileSize, const TerrainReadOptions& opt,
+std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>* progress)
 {
   static std::once_flag once;
   std::call_once(once, []() { GDALAllRegister(); });
   GdalErrors errors;
+  // Declared before the dataset, so that it is unlinked after the dataset is closed.
+  const std::unique_ptr<VsiMemFile> mem(in.inMemory ? new VsiMemFile(in) : nullptr);
+  const std::string& path = mem ? mem->path() : in.name;
   GdalDataset ds;
-  ds.h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  ds.h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+    mem ? oneFileDrivers() : nullptr, nullptr, nullptr);
   if (!ds.h)
   {
-    if (path.size() > 4 && (path.compare(path.size() - 4, 4, ".hgt") == 0 ||
-                             path.compare(path.size() - 4, 4, ".HGT") == 0))
+    const std::string& name = in.name;
+    if (name.size() > 4 && (name.compare(name.size() - 4, 4, ".hgt") == 0 ||
+                             name.compare(name.size() - 4, 4, ".HGT") == 0))
     {
       // GDAL recognises SRTM tiles by size alone: say which sizes would have worked.
       return "is not a raster GDAL can read: SRTM .hgt tiles are identified by size, e.g. "
@@ -332,25 +432,48 @@ std::string gdalRead(const std::string& path, double fileSize, const TerrainRead
   return std::string();
 }
 
+// One image row of grey samples to heights.
 template <class T>
-void convertGrey(const T* src, int nx, int ny, double scale, double offset, float* z)
+void greyRow(const T* src, int nx, double scale, double offset, float* dst)
 {
-  for (int r = 0; r < ny; ++r) // image row 0 is the top (north): flip
+  for (int c = 0; c < nx; ++c)
   {
-    float* dst = z + static_cast<std::size_t>(ny - 1 - r) * nx;
-    for (int c = 0; c < nx; ++c)
-    {
-      const double v = static_cast<double>(src[static_cast<std::size_t>(r) * nx + c]);
-      dst[c] = toHeight(scale * v + offset);
-    }
+    dst[c] = toHeight(scale * static_cast<double>(src[c]) + offset);
   }
 }
 
-std::string oiioRead(const std::string& path, double fileSize, const TerrainReadOptions& opt,
+// Grey samples of type T (buf: ny rows of nx) to heights z.
+template <class T>
+void convertGrey(const unsigned char* buf, int nx, int ny, double scale, double offset, float* z)
+{
+  const T* src = reinterpret_cast<const T*>(buf);
+  for (int r = 0; r < ny; ++r) // image row 0 is the top (north): flip
+  {
+    greyRow(src + static_cast<std::size_t>(r) * nx, nx, scale, offset,
+      z + static_cast<std::size_t>(ny - 1 - r) * nx);
+  }
+}
+
+// Half floats: converted to float (exactly) by OpenImageIO, a row at a time.
+void convertGreyHalf(const unsigned char* buf, int nx, int ny, double scale, double offset, float* z)
+{
+  std::vector<float> row(static_cast<std::size_t>(nx));
+  for (int r = 0; r < ny; ++r)
+  {
+    OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, buf + static_cast<std::size_t>(r) * nx * 2,
+      OIIO::TypeDesc::FLOAT, row.data(), nx);
+    greyRow(row.data(), nx, scale, offset, z + static_cast<std::size_t>(ny - 1 - r) * nx);
+  }
+}
+
+std::string oiioRead(const Input& file, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>* progress)
 {
   using OIIO::TypeDesc;
-  auto in = OIIO::ImageInput::open(path);
+  // In memory: OpenImageIO picks the format from the name, and reads through the proxy,
+  // declared before the image, which must not outlive it.
+  OIIO::Filesystem::IOMemReader mem(file.data, file.inMemory ? file.size : 0);
+  auto in = OIIO::ImageInput::open(file.name, nullptr, file.inMemory ? &mem : nullptr);
   if (!in)
   {
     return "is not an image OpenImageIO can read (" + OIIO::geterror() + ")";
@@ -396,11 +519,16 @@ std::string oiioRead(const std::string& path, double fileSize, const TerrainRead
   const double scale = opt.heightScale, offset = opt.heightOffset;
   const TypeDesc f = spec.format;
   const bool isFloat = f == TypeDesc::HALF || f == TypeDesc::FLOAT || f == TypeDesc::DOUBLE;
-  // Integers are read in their own type: OpenImageIO would normalise them to [0, 1].
-  const TypeDesc readAs = isFloat ? TypeDesc(TypeDesc::FLOAT) : f;
+  // Samples are read in the file's own type (TypeDesc::UNKNOWN): integers must not be
+  // converted (OpenImageIO would normalise them to [0, 1]), and given any explicit type,
+  // even the file's own, OpenImageIO 2.4 converts through a temporary buffer of about 64 MB
+  // per call, whatever the image's size. Only channels of different types (possible in
+  // EXR) are converted by OpenImageIO: to float, or to the integer type f.
+  const bool mixed = !spec.channelformats.empty();
+  const TypeDesc readAs = mixed && isFloat ? TypeDesc(TypeDesc::FLOAT) : f;
   const int channels = rgb ? 3 : 1;
   std::vector<unsigned char> buf(n * channels * readAs.size());
-  if (!in->read_image(0, 0, 0, channels, readAs, buf.data()))
+  if (!in->read_image(0, 0, 0, channels, mixed ? readAs : TypeDesc(TypeDesc::UNKNOWN), buf.data()))
   {
     return "could not be decoded: truncated or corrupt (" + in->geterror() + ")";
   }
@@ -422,13 +550,15 @@ std::string oiioRead(const std::string& path, double fileSize, const TerrainRead
   {
     switch (readAs.basetype)
     {
-      case TypeDesc::UINT8: convertGrey(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT8: convertGrey(reinterpret_cast<int8_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::UINT16: convertGrey(reinterpret_cast<uint16_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT16: convertGrey(reinterpret_cast<int16_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::UINT32: convertGrey(reinterpret_cast<uint32_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT32: convertGrey(reinterpret_cast<int32_t*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::FLOAT: convertGrey(reinterpret_cast<float*>(buf.data()), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT8: convertGrey<uint8_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT8: convertGrey<int8_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT16: convertGrey<uint16_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT16: convertGrey<int16_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::UINT32: convertGrey<uint32_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::INT32: convertGrey<int32_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::HALF: convertGreyHalf(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::FLOAT: convertGrey<float>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
+      case TypeDesc::DOUBLE: convertGrey<double>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
       default: return std::string("has an unsupported sample type (") + f.c_str() + ")";
     }
   }
@@ -601,15 +731,10 @@ std::string geoGrid(TerrainRaster& r, bool withHeights)
   return std::string();
 }
 
-std::string readAny(const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out,
-  const std::function<void(double)>* progress)
+// The size of a file on disk in bytes, or a sentence saying why it cannot be read.
+std::string fileSize(const std::string& path, double& size)
 {
-  out = TerrainRaster();
   struct stat st;
-  if (path.empty())
-  {
-    return "no file name was given";
-  }
   if (stat(path.c_str(), &st) != 0)
   {
     return "does not exist or cannot be accessed";
@@ -618,15 +743,39 @@ std::string readAny(const std::string& path, const TerrainReadOptions& opt, Terr
   {
     return "is not a regular file";
   }
-  if (st.st_size == 0)
+  size = static_cast<double>(st.st_size);
+  return std::string();
+}
+
+std::string readAny(const Input& in, const TerrainReadOptions& opt, TerrainRaster& out,
+  const std::function<void(double)>* progress)
+{
+  out = TerrainRaster();
+  if (in.name.empty())
+  {
+    return "no file name was given";
+  }
+  double size = static_cast<double>(in.size);
+  if (in.inMemory && !in.data && in.size > 0)
+  {
+    return "was given as a null pointer with " + std::to_string(in.size) + " bytes";
+  }
+  if (!in.inMemory)
+  {
+    const std::string problem = fileSize(in.name, size);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  if (size == 0.0)
   {
     return "is empty";
   }
   try
   {
-    const double size = static_cast<double>(st.st_size);
-    return hasImageExtension(path) ? oiioRead(path, size, opt, out, progress)
-                                   : gdalRead(path, size, opt, out, progress);
+    return hasImageExtension(in.name) ? oiioRead(in, size, opt, out, progress)
+                                      : gdalRead(in, size, opt, out, progress);
   }
   catch (const std::bad_alloc&)
   {
@@ -635,28 +784,16 @@ std::string readAny(const std::string& path, const TerrainReadOptions& opt, Terr
   }
 }
 
-} // namespace
-
-std::string readTerrainHeader(
-  const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out)
+// A read, then the geographic lattice resampled to the local grid (header: size only).
+std::string readAndGrid(const Input& in, const TerrainReadOptions& opt, TerrainRaster& out,
+  const std::function<void(double)>* progress)
 {
-  std::string problem = readAny(path, opt, out, nullptr);
-  if (problem.empty() && out.geographic)
-  {
-    problem = geoGrid(out, false);
-  }
-  return problem;
-}
-
-std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
-  TerrainRaster& out, const std::function<void(double)>& progress)
-{
-  std::string problem = readAny(path, opt, out, &progress);
+  std::string problem = readAny(in, opt, out, progress);
   if (problem.empty() && out.geographic)
   {
     try
     {
-      problem = geoGrid(out, true);
+      problem = geoGrid(out, progress != nullptr);
     }
     catch (const std::bad_alloc&)
     {
@@ -665,6 +802,32 @@ std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
     }
   }
   return problem;
+}
+
+} // namespace
+
+std::string readTerrainHeader(
+  const std::string& path, const TerrainReadOptions& opt, TerrainRaster& out)
+{
+  return readAndGrid(Input{ path }, opt, out, nullptr);
+}
+
+std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>& progress)
+{
+  return readAndGrid(Input{ path }, opt, out, &progress);
+}
+
+std::string readTerrainHeader(
+  const TerrainBytes& bytes, const TerrainReadOptions& opt, TerrainRaster& out)
+{
+  return readAndGrid(Input{ bytes.name, true, bytes.data, bytes.size }, opt, out, nullptr);
+}
+
+std::string readTerrain(const TerrainBytes& bytes, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>& progress)
+{
+  return readAndGrid(Input{ bytes.name, true, bytes.data, bytes.size }, opt, out, &progress);
 }
 
 void geographicToLocal(double centralMeridian, double lon0, double lat0, double lon, double lat,

@@ -4,6 +4,7 @@
 // one place; the reader only copies the result into a vtkImageData.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -53,5 +54,24 @@ void geographicToLocal(double centralMeridian, double lon0, double lat0, double 
   double& x, double& y);
 void localToGeographic(double centralMeridian, double lon0, double lat0, double x, double y,
   double& lon, double& lat);
+
+// A file's contents held in memory (a fuzzer's input, a download). name is the file name
+// the bytes stand for: its extension picks OpenImageIO or GDAL as for a file, SRTM tiles
+// are recognised by it, and messages use it; nothing is opened under it. data must stay
+// valid during the read. Only formats whose dataset is one file are tried: the one-file
+// GDAL drivers of kKnownDrivers in TerrainIO.cxx (a file may be any GDAL raster), and the
+// OpenImageIO formats that read through an IOProxy.
+struct TerrainBytes
+{
+  const void* data = nullptr;
+  std::size_t size = 0;
+  std::string name;
+};
+
+// The same two reads, from memory: same checks, results and messages as from a file.
+std::string readTerrainHeader(
+  const TerrainBytes& bytes, const TerrainReadOptions& opt, TerrainRaster& out);
+std::string readTerrain(const TerrainBytes& bytes, const TerrainReadOptions& opt,
+  TerrainRaster& out, const std::function<void(double)>& progress);
 
 } // namespace gmm

@@ -41,4 +41,15 @@ if(GEOMIPMAP_BUILD_TESTING)
       LABELS "python;fly"
       ENVIRONMENT "${_fly_env}")
   endforeach()
+  # Waypoint parsing in-process (no command, no rendering): every case file, then seeded
+  # mutation fuzzing (15000 inputs, a few seconds).
+  foreach(_t IN ITEMS TestFlyWaypointFiles TestFlyWaypointFuzz)
+    add_test(NAME geomipmapPython.${_t}
+      COMMAND /usr/bin/python3 "${_fly_tests}/${_t}.py" "${CMAKE_BINARY_DIR}/Testing/Python/${_t}"
+      WORKING_DIRECTORY "${CMAKE_BINARY_DIR}/Testing/Python")
+    set_tests_properties(geomipmapPython.${_t} PROPERTIES
+      TIMEOUT 120
+      LABELS "python;fly"
+      ENVIRONMENT "PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT}")
+  endforeach()
 endif()

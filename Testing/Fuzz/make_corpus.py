@@ -5,7 +5,8 @@ make_corpus.py OUTDIR -> OUTDIR/reader/*, OUTDIR/engine/*.
 Reader seeds start with the selector byte FuzzTerrainReader.cpp reads (bits 0-2: file name,
 bit 3: terrain-RGB, bits 4-6: scale / offset / spacing options), then the file bytes:
 a GeoTIFF (int16 and float32 with nodata and a negative-height pixel), ESRI ASCII grids,
-a 16-bit grey PNG, an 8-bit RGB terrain-RGB PNG and a PGM. Standard library only."""
+an XYZ grid, a GRASS ASCII grid, a 16-bit grey PNG, an 8-bit RGB terrain-RGB PNG and a PGM.
+Standard library only."""
 import os
 import random
 import struct
@@ -91,6 +92,22 @@ def asc(nx, ny, values, nodata=-9999):
     return ("\n".join(lines) + "\n").encode()
 
 
+def xyz(nx, ny, values):
+    """GDAL XYZ grid: "x y z" lines, rows top (north) first, x increasing."""
+    lines = ["%g %g %g" % (1000.0 + 10.0 * i, 2000.0 - 10.0 * j, values[j * nx + i])
+             for j in range(ny) for i in range(nx)]
+    return ("\n".join(lines) + "\n").encode()
+
+
+def grass(nx, ny, values):
+    """GRASS ASCII grid: header (bounds, rows, cols, null value), then rows north first."""
+    lines = ["north: 2050", "south: 2000", "east: 1070", "west: 1000", "rows: %d" % ny,
+             "cols: %d" % nx, "null: -9999"]
+    for j in range(ny):
+        lines.append(" ".join("%g" % v for v in values[j * nx:(j + 1) * nx]))
+    return ("\n".join(lines) + "\n").encode()
+
+
 def main():
     out = sys.argv[1]
     rng = random.Random(6)
@@ -109,6 +126,8 @@ def main():
         "asc": bytes([ASC]) + asc(nx, ny, heights, -32768),
         "asc-as-hgt": bytes([HGT]) + asc(2, 2, [1, 2, 3, 4]),
         "asc-as-dem": bytes([DEM | 0x20]) + asc(3, 3, [float(i) for i in range(9)]),
+        "xyz": bytes([BIN]) + xyz(4, 3, heights[:12]),
+        "grass": bytes([ASC | 0x40]) + grass(nx, ny, heights),
         "png16": bytes([PNG]) + png(4, 3, [struct.pack(">4H", *(rng.randint(0, 65535)
                                                              for _ in range(4)))
                                           for _ in range(3)], 16, 0),

@@ -2,13 +2,18 @@
 
 Missing / empty / garbage DEM files, a DEM the reader refuses, waypoints outside the
 terrain or malformed, and nonsense option values. No case may print a traceback or VTK's
-multi-line error dumps.
+multi-line error dumps. Malformed waypoint files (issue #16 item 6) must also exit 2
+("bad input", not 1 "internal error") with a line naming the file and the problem: the
+CSV line or the JSON waypoint number where it is. Every malformed waypoint file of
+waypointcases.py is checked in-process by TestFlyWaypointFiles; the few here go through the
+command (those that used to end in an internal error).
 """
 
 import os
 
 from flytestutil import check, run, setup
 from gmmdata import optional_data_file
+from waypointcases import BAD, THROUGH_COMMAND, write
 
 exe, out = setup()
 garbage = os.path.join(out, "garbage.tif")
@@ -31,6 +36,7 @@ with open(badjson, "w") as f:
 geo_on_synth = os.path.join(out, "geo.csv")
 with open(geo_on_synth, "w") as f:
     f.write("lon,lat,agl\n1.0,42.1,100\n1.1,42.2,100\n")
+
 
 small = ["--synthetic-size", "65", "--frames", "2", "--size", "64x64", "--out",
          os.path.join(out, "o")]
@@ -60,6 +66,12 @@ cases = {
     "missing texture": ["--color", "texture:" + os.path.join(out, "nope.png")] + small,
     "colour name": ["--color", "rainbow"],
 }
+expected = {}  # case -> words its error line must hold
+for name in THROUGH_COMMAND:
+    filename, content, words = BAD[name]
+    path = write(out, filename, content)
+    cases[f"waypoints: {name}"] = ["--waypoints", path] + small
+    expected[f"waypoints: {name}"] = [path] + words
 rgb = optional_data_file("fuji_terrain_rgb.png")
 if rgb:
     cases["RGB PNG without --terrain-rgb"] = ["--dem", rgb] + small[2:]
@@ -72,6 +84,11 @@ for name, args in cases.items():
     lines = [ln for ln in se.splitlines() if ln.strip()]
     ok = (rc != 0 and len(lines) == 1 and "Traceback" not in se
           and lines[0].startswith("geomipmap-fly: error:"))
+    if name in expected:  # a bad waypoint file: exit 2 and a line that says where and what
+        missing = [w for w in expected[name] if w not in lines[0]] if lines else ["(no line)"]
+        ok = ok and rc == 2 and not missing
+        if missing:
+            print(f"     {name}: the error line lacks {missing}")
     print(f"{'ok  ' if ok else 'FAIL'} {name}: rc {rc}: {se.strip()[:160]!r}")
     if not ok:
         failures.append(name)

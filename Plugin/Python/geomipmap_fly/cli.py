@@ -25,7 +25,9 @@ and a height
   agl      metres above the ground under the camera (terrain following), or
   z / alt  absolute metres (the DEM's height datum).
 --clearance M overrides the heights: terrain following at M metres for every path.
-Lines starting with # are ignored in CSV files.
+Files are UTF-8 (a byte order mark is fine); names are case-insensitive and each may
+appear once. In CSV files every row has as many fields as the header, and blank lines
+and lines starting with # are ignored.
 
 examples:
   geomipmap-fly                                    # orbit over synthetic terrain

@@ -9,6 +9,7 @@ clearance at the sampled points (running maximum, then a moving average narrower
 """
 
 import csv
+import io
 import json
 import math
 import os
@@ -71,43 +72,63 @@ def _flat(xy, heights, clearance, closed):
 def read_waypoints(filename, image, heights, clearance):
     """Read a CSV (header row) or JSON waypoint file into a Path in local metres.
 
-    Columns / keys: x, y (local metres, the image's frame) or lon, lat (degrees WGS84,
-    converted like the reader does, see terrain.GeoFrame); then one of agl (metres above
-    the ground under the camera), z or alt (absolute metres, the DEM's height datum).
-    --clearance overrides the heights with a constant clearance. JSON: a list of objects
-    with those keys, or {"waypoints": [...]}.
+    See parse_waypoints for the format; this only reads the file's bytes.
     """
     if not os.path.isfile(filename):
         raise FlyError(f"waypoint file not found: {filename}")
-    rows = _parse_rows(filename)
+    try:
+        with open(filename, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise FlyError(f"cannot read waypoint file {filename}: {e.strerror}") from None
+    return parse_waypoints(data, filename, image, heights, clearance)
+
+
+def parse_waypoints(data, filename, image, heights, clearance):
+    """The bytes of a waypoint file -> Path in local metres; FlyError if malformed.
+
+    filename names the file in messages and picks the format (.json: JSON, else CSV).
+    Text is UTF-8, with or without a byte order mark. Columns / keys: x, y (local metres,
+    the image's frame) or lon, lat (degrees WGS84, converted like the reader does, see
+    terrain.GeoFrame); then one of agl (metres above the ground under the camera), z or alt
+    (absolute metres, the DEM's height datum). Names are case-insensitive and must be
+    unique; other columns are ignored. --clearance (clearance not None) overrides the
+    heights with a constant clearance. CSV: a header row, then one waypoint a row, each
+    with as many fields as the header; blank lines and lines starting with # are skipped.
+    JSON: a list of objects with those keys, or {"waypoints": [...]}; values are numbers
+    (or numeric strings). Messages name the CSV line or the JSON waypoint number.
+    """
+    text = _decode(data, filename)
+    if filename.lower().endswith(".json"):
+        rows = _json_rows(text, filename)
+    else:
+        rows = _csv_rows(text, filename)
     if len(rows) < 2:
         raise FlyError(f"{filename}: need at least 2 waypoints, found {len(rows)}")
-    keys = set(rows[0])
+    keys = set(rows[0][1])
     if all(k in keys for k in GEO_KEYS):
         pos = GEO_KEYS
-        frame = GeoFrame(image, heights)
+        try:
+            frame = GeoFrame(image, heights)
+        except FlyError as e:
+            raise FlyError(f"{filename}: {e}") from None
     elif all(k in keys for k in LOCAL_KEYS):
         pos, frame = LOCAL_KEYS, None
     else:
         raise FlyError(f"{filename}: need columns x,y (metres) or lon,lat (degrees); "
-                       f"found {','.join(sorted(keys)) or 'none'}")
+                       f"found {_shown(','.join(sorted(keys)), 80) if keys else 'none'}")
     hkey = next((k for k in HEIGHT_KEYS if k in keys), None)
     if hkey is None and clearance is None:
         raise FlyError(f"{filename}: need a height column agl (above ground) or z/alt "
                        "(absolute metres), or give --clearance")
     xy, hs = [], []
-    for n, row in enumerate(rows, start=1):
-        try:
-            a, b = float(row[pos[0]]), float(row[pos[1]])
-            h = float(row[hkey]) if hkey else 0.0
-        except (KeyError, TypeError, ValueError):
-            raise FlyError(f"{filename}: waypoint {n} is not numeric: {row}") from None
-        if not all(math.isfinite(v) for v in (a, b, h)):
-            raise FlyError(f"{filename}: waypoint {n} has a non-finite value")
+    for where, row in rows:
+        a, b = (_number(row, k, f"{filename}: {where}") for k in pos)
+        h = _number(row, hkey, f"{filename}: {where}") if hkey else 0.0
         x, y = frame.to_local(a, b) if frame else (a, b)
         if not heights.contains(x, y):
-            where = f"lon {a:.6f} lat {b:.6f}" if frame else f"x {a:g} y {b:g}"
-            raise FlyError(f"{filename}: waypoint {n} ({where}) is outside the terrain")
+            at = f"lon {a:g} lat {b:g}" if frame else f"x {a:g} y {b:g}"
+            raise FlyError(f"{filename}: {where} at {at} is outside the terrain")
         xy.append((x, y))
         hs.append(h)
     if clearance is not None:
@@ -115,24 +136,111 @@ def read_waypoints(filename, image, heights, clearance):
     return Path(xy, hs, hkey == "agl")
 
 
-def _parse_rows(filename):
+def _decode(data, filename):
+    """UTF-8 (a leading byte order mark, as spreadsheets write it, is dropped)."""
     try:
-        if filename.lower().endswith(".json"):
-            with open(filename, encoding="utf-8") as f:
-                data = json.load(f)
-            if isinstance(data, dict):
-                data = data.get("waypoints")
-            if not isinstance(data, list) or not all(isinstance(r, dict) for r in data):
-                raise FlyError(f"{filename}: expected a list of waypoint objects "
-                               "(or {\"waypoints\": [...]})")
-            return [{str(k).strip().lower(): v for k, v in r.items()} for r in data]
-        with open(filename, newline="", encoding="utf-8") as f:
-            lines = [ln for ln in f if ln.strip() and not ln.lstrip().startswith("#")]
-        reader = csv.DictReader(lines)
-        return [{(k or "").strip().lower(): (v or "").strip() for k, v in r.items()}
-                for r in reader]
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError, csv.Error) as e:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        raise FlyError(f"cannot read waypoint file {filename}: line {line} is not UTF-8 "
+                       f"text (byte 0x{data[e.start]:02x})") from None
+
+
+def _csv_rows(text, filename):
+    """CSV text -> [(where, {column: field})]; where names the waypoint and its line."""
+    # Line numbers are the file's (as an editor shows them), so skipped lines are counted.
+    kept = [(n, ln) for n, ln in enumerate(io.StringIO(text, newline=""), start=1)
+            if ln.strip() and not ln.lstrip().startswith("#")]
+    reader = csv.reader(ln for _, ln in kept)
+    header, rows, used = None, [], 0
+    try:
+        for fields in reader:
+            line, used = kept[used][0], reader.line_num  # a quoted field may span lines
+            if header is None:
+                header = [f.strip().lower() for f in fields]
+                _unique([(h, None) for h in header], f"{filename}: line {line}: column")
+                continue
+            if len(fields) != len(header):
+                raise FlyError(f"{filename}: line {line} has {len(fields)} fields, "
+                               f"the header has {len(header)}")
+            where = f"waypoint {len(rows) + 1} (line {line})"
+            rows.append((where, {h: f.strip() for h, f in zip(header, fields) if h}))
+    except csv.Error as e:
+        line = kept[min(used, len(kept) - 1)][0]
+        raise FlyError(f"cannot read waypoint file {filename}: line {line}: {e}") from None
+    return rows
+
+
+class _Object(tuple):
+    """A JSON object as its (key, value) pairs, so that repeated keys can be reported."""
+
+
+def _json_rows(text, filename):
+    """JSON text -> [(where, {key: value})]; where names the waypoint by its number."""
+    try:
+        # Integers as floats: a 400-digit one is then out of range like 1e400, not an
+        # OverflowError, and Python's 4300-digit limit on int() never applies.
+        data = json.loads(text, object_pairs_hook=_Object, parse_int=float)
+    except json.JSONDecodeError as e:
         raise FlyError(f"cannot read waypoint file {filename}: {e}") from None
+    except RecursionError:
+        raise FlyError(f"cannot read waypoint file {filename}: JSON nested too deeply") from None
+    if isinstance(data, _Object):
+        data = dict(data).get("waypoints")
+    if not isinstance(data, list):
+        raise FlyError(f"{filename}: expected a list of waypoint objects "
+                       "(or {\"waypoints\": [...]})")
+    rows = []
+    for n, item in enumerate(data, start=1):
+        where = f"waypoint {n}"
+        if not isinstance(item, _Object):
+            raise FlyError(f"{filename}: {where} is not an object: {_shown(item)}")
+        pairs = [(str(k).strip().lower(), v) for k, v in item]
+        rows.append((where, _unique(pairs, f"{filename}: {where}: key")))
+    return rows
+
+
+def _unique(pairs, context):
+    """dict(pairs) without empty names; FlyError if a name appears twice."""
+    out = {}
+    for name, value in pairs:
+        if name in out:
+            raise FlyError(f"{context} {_shown(name)} appears twice")
+        if name:
+            out[name] = value
+    return out
+
+
+def _number(row, key, context):
+    """row[key] as a finite float: a JSON number or a numeric string (not true/false)."""
+    if key not in row:
+        raise FlyError(f"{context} has no {key}")
+    value = row[key]
+    try:
+        if isinstance(value, str):
+            v = float(value.strip())
+        elif isinstance(value, float):
+            v = value
+        else:  # true/false, null, a list or an object
+            raise ValueError
+    except ValueError:
+        raise FlyError(f"{context}: {key} is not a number: {_shown(value)}") from None
+    if not math.isfinite(v):
+        raise FlyError(f"{context}: {key} is non-finite or out of range: {_shown(value)}")
+    return v
+
+
+def _shown(value, limit=40):
+    """A value (from the file) as a short, one-line quote for an error message."""
+    if isinstance(value, _Object):
+        text = "an object"
+    elif isinstance(value, list):
+        text = "a list"
+    elif value is None or isinstance(value, bool):
+        text = json.dumps(value)
+    else:
+        text = repr(value)  # escapes newlines and control characters
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 class Flight:
