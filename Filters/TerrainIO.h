@@ -1,4 +1,5 @@
-// TerrainIO: GDAL / OpenImageIO reading behind vtkGeoMipMapTerrainReader (private header).
+// TerrainIO: GDAL / OpenImageIO reading behind vtkGeoMipMapTerrainReader (private header);
+// lon/lat rasters are then resampled to a metric grid by TerrainGeographic.h.
 //
 // Kept free of VTK so the format logic (georeference, units, nodata, size checks) reads in
 // one place; the reader only copies the result into a vtkImageData.
@@ -11,6 +12,9 @@
 
 namespace gmm
 {
+
+// The most samples a raster may hold (the reader's image is indexed by int).
+constexpr long long kMaxRasterSamples = 2147483647LL;
 
 struct TerrainReadOptions
 {
@@ -47,13 +51,6 @@ std::string readTerrainHeader(
 // Reads header and heights. progress(fraction) is called now and then.
 std::string readTerrain(const std::string& path, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>& progress);
-
-// The local frame of geographic rasters: WGS84 transverse Mercator (scale 1 on the central
-// meridian), shifted so that (lon0, lat0) is (0, 0). Degrees and metres.
-void geographicToLocal(double centralMeridian, double lon0, double lat0, double lon, double lat,
-  double& x, double& y);
-void localToGeographic(double centralMeridian, double lon0, double lat0, double x, double y,
-  double& lon, double& lat);
 
 // A file's contents held in memory (a fuzzer's input, a download). name is the file name
 // the bytes stand for: its extension picks OpenImageIO or GDAL as for a file, SRTM tiles

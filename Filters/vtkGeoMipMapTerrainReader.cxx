@@ -13,6 +13,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "TerrainGeographic.h" // geographicToLocal, localToGeographic
 #include "TerrainIO.h"
 
 #include <algorithm>

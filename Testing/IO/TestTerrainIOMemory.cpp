@@ -5,6 +5,8 @@
 // the file path's messages (and a null pointer its own); no /vsimem/ file is left behind.
 #include "TerrainIO.h"
 
+#include "GeoMipMapTestData.h" // DataDir, DataRequired
+
 #include <OpenImageIO/imageio.h>
 #include <cpl_string.h>
 #include <cpl_vsi.h>
@@ -184,16 +186,17 @@ protected:
 
 TEST_F(TerrainIOMemory, RealDemsReadTheSameFromMemory)
 {
-  const char* env = std::getenv("GEOMIPMAP_DATA");
-  const std::string data = env && *env ? env : "";
+  const std::string data = gmmtest::DataDir();
   const char* const dems[] = { "N42E001.hgt", "N48W125.hgt", "SainteHelens.dem",
     "boulder_srtmgl3.asc", "mt_rainier_90m.tif", "ps_height_1k.png", "fuji_terrain_rgb.png" };
   int found = 0;
   for (const char* dem : dems)
   {
     const std::string path = data + "/" + dem;
-    if (data.empty() || access(path.c_str(), R_OK) != 0)
+    if (access(path.c_str(), R_OK) != 0)
     {
+      // every one of them is in the shared folder: with data required, a missing one fails
+      EXPECT_FALSE(gmmtest::DataRequired()) << path << " is missing and GEOMIPMAP_REQUIRE_DATA is set";
       continue;
     }
     ++found;
@@ -208,7 +211,7 @@ TEST_F(TerrainIOMemory, RealDemsReadTheSameFromMemory)
   expectNoMemFilesLeft();
   if (found == 0)
   {
-    GTEST_SKIP() << "no real DEMs (GEOMIPMAP_DATA unset or empty)";
+    GTEST_SKIP() << "no real DEMs in " << data << " (set GEOMIPMAP_DATA_DIR to the shared data folder)";
   }
 }
 
