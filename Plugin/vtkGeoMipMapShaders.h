@@ -9,10 +9,11 @@
  *   carry the anchor's position, in double), so large coordinates keep their precision;
  *   the grid position (i, j) goes to the fragment shader; texture coordinates are
  *   (i / (nx - 1), j / (ny - 1)).
- * - fragment shader: the normal (when lit) and the scalar colour (when coloured) at the
- *   fragment's grid position come from the full-resolution samples, interpolated on the
- *   level-0 triangle under the fragment as the full-resolution mesh would interpolate its
- *   vertex values, so shading does not depend on the level drawn.
+ * - fragment shader: the normal (when lit) comes from the full-resolution slopes at the
+ *   fragment's grid position (bilinearly filtered on a one-layer DEM, interpolated on the
+ *   level-0 triangle under the fragment otherwise), so shading does not depend on the level
+ *   drawn; a second scalar array or RGB(A) colours are interpolated on that triangle;
+ *   colouring by height uses the drawn surface's height, interpolated from the vertices.
  * Not wrapped, not installed: private to geomipmap::Rendering.
  */
 #ifndef vtkGeoMipMapShaders_h
