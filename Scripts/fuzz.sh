@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan, GEOMIPMAP_SANITIZE) into
-# ${GEOMIPMAP_FUZZ_BUILD_DIR:-build-fuzz} and runs each for FUZZ_SECONDS (default 60).
+# ${GEOMIPMAP_FUZZ_BUILD_DIR:-build-fuzz} and runs each for FUZZ_SECONDS (default 60) in
+# FUZZ_JOBS processes at once (default: one per core), sharing the corpus directory.
 # Usage: Scripts/fuzz.sh [target...]   targets: engine reader (default both)
 # The growing corpus lives in <build>/corpus/<target> (kept between runs, so long campaigns
 # resume); seeds come from Testing/Fuzz/make_corpus.py and Testing/Fuzz/corpus/<target>.
 # A crash, leak, timeout or invariant violation fails the script; the reproducer is written
-# to <build>/artifacts/<target>/ and the log's tail printed. Full logs: <build>/logs/.
+# to <build>/artifacts/<target>/ and the failing log's tail printed. Full logs:
+# <build>/logs/<target>/fuzz-<k>.log, one per process.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOMIPMAP_FUZZ_BUILD_DIR:-$here/build-fuzz}
 seconds=${FUZZ_SECONDS:-60}
+jobs=${FUZZ_JOBS:-$(nproc)}
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(engine reader)
 
@@ -24,7 +27,6 @@ CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_T
 cmake --build "$build" -j"$(nproc)" --target geomipmapFuzzEngine geomipmapFuzzTerrainReader
 
 /usr/bin/python3 "$here/Testing/Fuzz/make_corpus.py" "$build/seed"
-mkdir -p "$build/logs"
 status=0
 for t in "${targets[@]}"; do
   case $t in
@@ -35,8 +37,9 @@ for t in "${targets[@]}"; do
       args=(-max_len=65536 -rss_limit_mb=2048 -malloc_limit_mb=1024) ;;
     *) echo "fuzz.sh: unknown target $t (engine, reader)" >&2; exit 2 ;;
   esac
-  corpus="$build/corpus/$t" artifacts="$build/artifacts/$t/" log="$build/logs/$t.log"
+  corpus="$build/corpus/$t" artifacts="$build/artifacts/$t/" logs="$build/logs/$t"
   mkdir -p "$corpus" "$artifacts"
+  rm -rf "$logs" && mkdir -p "$logs"
   seeds=("$build/seed/$t")
   [ ! -d "$here/Testing/Fuzz/corpus/$t" ] || seeds+=("$here/Testing/Fuzz/corpus/$t")
   # Leak checks stay on; the reader's suppressions name only OpenImageIO (see the file).
@@ -49,19 +52,32 @@ for t in "${targets[@]}"; do
   [ ! -f "$supp" ] || lsan="suppressions=$supp:$lsan"
   asan="fast_unwind_on_malloc=1"
   [ "$t" != reader ] || asan="fast_unwind_on_malloc=0:malloc_context_size=8"
-  echo "fuzz.sh: $t for ${seconds}s (log: $log)"
-  # -reload=0: one process, so there is no other job's corpus to re-read every second.
-  if LSAN_OPTIONS="$lsan" ASAN_OPTIONS="$asan" \
+  echo "fuzz.sh: $t for ${seconds}s in $jobs process(es) (logs: $logs)"
+  # -jobs/-workers: independent processes (each writes fuzz-<k>.log in $logs), not -fork,
+  # whose short child jobs re-read the corpus each time (half the inputs, measured).
+  # -reload=0: no re-reading of the other processes' finds every second.
+  if (cd "$logs" && LSAN_OPTIONS="$lsan" ASAN_OPTIONS="$asan" \
     UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" \
-    "$build/Testing/Fuzz/$exe" -max_total_time="$seconds" -timeout=25 -print_final_stats=1 \
-    -reload=0 -artifact_prefix="$artifacts" "${args[@]}" "$corpus" "${seeds[@]}" >"$log" 2>&1; then
-    grep -E '^stat::number_of_executed_units|^stat::average_exec_per_sec|^Done|^#[0-9]+.*DONE' \
-      "$log" || true
-    echo "fuzz.sh: $t: no crash; corpus $(find "$corpus" -type f | wc -l) files"
+    "$build/Testing/Fuzz/$exe" -jobs="$jobs" -workers="$jobs" -max_total_time="$seconds" \
+    -timeout=25 -print_final_stats=1 -reload=0 -artifact_prefix="$artifacts" "${args[@]}" \
+    "$corpus" "${seeds[@]}" >main.log 2>&1); then
+    grep -h -E '^#[0-9]+.*DONE' "$logs"/fuzz-*.log || true
+    total=$(cat "$logs"/fuzz-*.log | sed -n 's/^stat::number_of_executed_units: //p' |
+      awk '{ s += $1 } END { print s + 0 }')
+    echo "fuzz.sh: $t: $total inputs in ${seconds}s ($jobs processes), no crash; corpus $(find "$corpus" -type f | wc -l) files"
   else
     status=1
     echo "fuzz.sh: $t FAILED; reproducer(s): $(ls "$artifacts")" >&2
-    grep -v -E '^(ERROR|Warning) [0-9]+:|Not a TIFF|^libpng ' "$log" | tail -60 >&2
+    failed=()
+    for log in "$logs"/fuzz-*.log; do
+      ! grep -q -E 'ERROR: |SUMMARY: |==[0-9]+==' "$log" || failed+=("$log")
+    done
+    # libFuzzer's own complaint when no process log says more
+    [ ${#failed[@]} -gt 0 ] || failed=("$logs"/main.log)
+    for log in "${failed[@]}"; do
+      echo "--- $log" >&2
+      grep -v -E '^(ERROR|Warning) [0-9]+:|Not a TIFF|^libpng ' "$log" | tail -60 >&2
+    done
   fi
 done
 exit $status
