@@ -125,11 +125,11 @@ def main(argv):
 
     for f in range(frames):
         place(f)
-        t, c = time.perf_counter(), cpu_s()
+        t, c0 = time.perf_counter(), cpu_s()
         win.Render()
         win.WaitForCompletion()
         times.append((time.perf_counter() - t) * 1000.0)
-        cpu.append((cpu_s() - c) * 1000.0)  # all threads: robust to other processes' load
+        cpu.append((cpu_s() - c0) * 1000.0)  # all threads: robust to other processes' load
         tris.append(mapper.GetNumberOfRenderedTriangles())
     out["frame_ms_median"] = statistics.median(times)
     out["frame_ms_mean"] = statistics.mean(times)
