@@ -27,9 +27,7 @@ import numpy as np
 
 def main(argv):
     nx, ny = int(argv[1]), int(argv[2])
-    from vtkmodules.util.numpy_support import numpy_to_vtk
     from vtkmodules.vtkCommonCore import vtkLookupTable
-    from vtkmodules.vtkCommonDataModel import vtkImageData
     from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkRenderer
     from vtkmodules.vtkRenderingOpenGL2 import vtkTextureObject
     import geomipmap
@@ -100,13 +98,7 @@ def main(argv):
     for i, j in points:
         i0, j0 = max(0, i - 80), max(0, j - 80)
         crop = z[j0:min(ny, j + 81), i0:min(nx, i + 81)]
-        img = vtkImageData()
-        img.SetDimensions(crop.shape[1], crop.shape[0], 1)
-        img.SetSpacing(spacing, spacing, 1.0)
-        img.SetOrigin(i0 * spacing, j0 * spacing, 0.0)
-        a = numpy_to_vtk(np.ascontiguousarray(crop).ravel(), deep=True)
-        a.SetName("Elevation")
-        img.GetPointData().SetScalars(a)
+        img = refscene.image_from_heights(crop, (spacing, spacing), (i0 * spacing, j0 * spacing, 0.0))
         lut = vtkLookupTable()
         lut.SetTableRange(float(np.nanmin(crop)), float(np.nanmax(crop)))
         lut.SetNumberOfTableValues(256)

@@ -16,13 +16,9 @@
    (plus that step) of GetHeightAt under them.
 """
 import math
-import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkCamera, vtkRenderer,
-                                         vtkWorldPointPicker)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkWorldPointPicker
 
 import geomipmap
 import refscene
@@ -46,14 +42,7 @@ z[30, 200] = np.nan
 
 
 def placed(x0, y0, z0):
-    img = vtkImageData()
-    img.SetDimensions(257, 257, 1)
-    img.SetSpacing(30.0, 30.0, 1.0)
-    img.SetOrigin(x0, y0, z0)
-    a = numpy_to_vtk(z.astype(np.float32).ravel(), deep=True)
-    a.SetName("Elevation")
-    img.GetPointData().SetScalars(a)
-    return img
+    return refscene.image_from_heights(z.astype(np.float32), origin=(x0, y0, z0))
 
 
 def camera(cam, off, f=0, frames=1):

@@ -16,12 +16,10 @@ vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
 - a MemoryLimit below the DEM's needs refuses it with an error naming both sizes and draws
   nothing; lifting the limit draws it.
 """
-import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk
 from vtkmodules.vtkCommonCore import vtkCommand, vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkPolyDataMapper, vtkRenderer
 
 import geomipmap
@@ -30,17 +28,6 @@ import refscene
 W, H = 480, 320
 BG = (0.1, 0.1, 0.2)
 check = refscene.Checks()
-
-
-def image_of(z, spacing=30.0, origin=(0.0, 0.0, 0.0), name="Elevation"):
-    img = vtkImageData()
-    img.SetDimensions(z.shape[1], z.shape[0], 1)
-    img.SetSpacing(spacing, spacing, 1.0)
-    img.SetOrigin(*origin)
-    a = numpy_to_vtk(np.ascontiguousarray(z).ravel(), deep=True)
-    a.SetName(name)
-    img.GetPointData().SetScalars(a)
-    return img
 
 
 src = geomipmap.vtkGeoMipMapFractalSource()
@@ -139,7 +126,7 @@ zi = np.round(zf).astype(np.int16)
 zu = np.round(zf).astype(np.uint16)
 pictures, gpu = {}, {}
 for name, z in (("float32", np.round(zf).astype(np.float32)), ("int16", zi), ("uint16", zu)):
-    m, a = ours(image_of(z))
+    m, a = ours(refscene.image_from_heights(z))
     pictures[name] = frame(a)
     gpu[name] = m.GetGPUMemoryBytes() - 4 * m.GetNumberOfRenderedTriangles() * 3
 for name in ("int16", "uint16"):
@@ -151,7 +138,7 @@ for name in ("int16", "uint16"):
 
 # Colouring by a second point array through a lookup table, and by RGB colours.
 slope = np.hypot(*np.gradient(zf, 30.0)).astype(np.float32)
-img = image_of(zf.astype(np.float32))
+img = refscene.image_from_heights(zf.astype(np.float32))
 s = numpy_to_vtk(slope.ravel(), deep=True)
 s.SetName("Slope")
 img.GetPointData().AddArray(s)

@@ -6,13 +6,9 @@ ResetCamera framed 30 m of nothing. Checked against numpy over the reader's outp
 the DEM as read and for a copy with whole nodata columns and rows added around it, and
 for an image whose samples are all nodata (uninitialised bounds, as VTK's empty data).
 """
-import math
 import os
-import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonDataModel import vtkImageData
 
 import geomipmap
 import gmmtestutil
@@ -37,16 +33,9 @@ def padded(image, left, right, bottom, top):
     ny, nx = h.shape
     out = np.full((ny + bottom + top, nx + left + right), np.nan, np.float32)
     out[bottom:bottom + ny, left:left + nx] = h
-    img = vtkImageData()
-    img.SetDimensions(out.shape[1], out.shape[0], 1)
     sx, sy, _ = image.GetSpacing()
     ox, oy, oz = image.GetOrigin()
-    img.SetSpacing(sx, sy, 1.0)
-    img.SetOrigin(ox - left * sx, oy - bottom * sy, oz)
-    a = numpy_to_vtk(out.ravel(), deep=True)
-    a.SetName("Elevation")
-    img.GetPointData().SetScalars(a)
-    return img
+    return refscene.image_from_heights(out, (sx, sy), (ox - left * sx, oy - bottom * sy, oz))
 
 
 data = gmmtestutil.data_dir_or_skip()

@@ -11,10 +11,10 @@ import sys
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
+                                         vtkWindowToImageFilter)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL factory overrides)
 
 
@@ -22,6 +22,19 @@ def heights(image):
     """(ny, nx) float64 heights of a 2D image's active scalars (NaN = nodata)."""
     nx, ny, _ = image.GetDimensions()
     return vtk_to_numpy(image.GetPointData().GetScalars()).astype(np.float64).reshape(ny, nx)
+
+
+def image_from_heights(z, spacing=(30.0, 30.0), origin=(0.0, 0.0, 0.0), name="Elevation"):
+    """A 2D image whose point scalars are a copy of the (ny, nx) array z, in z's own type
+    (the inverse of heights()); spacing (x, y), origin (x, y, z)."""
+    img = vtkImageData()
+    img.SetDimensions(z.shape[1], z.shape[0], 1)
+    img.SetSpacing(spacing[0], spacing[1], 1.0)
+    img.SetOrigin(*origin)
+    a = numpy_to_vtk(np.ascontiguousarray(z).ravel(), deep=True)
+    a.SetName(name)
+    img.GetPointData().SetScalars(a)
+    return img
 
 
 def sample_xy(image):
