@@ -9,7 +9,8 @@
 #include "vtkObject.h"
 #include "vtkPointData.h"
 
-#include "Quadtree.h"
+#include "Engine.h"   // gmm::validateHeightScale
+#include "Quadtree.h" // gmm::validateBlockSize
 
 #include <algorithm>
 #include <cmath>
@@ -100,7 +101,7 @@ std::string ImageToHeightfield(vtkImageData* image, gmm::Heightfield& hf, vtkDat
       hf.owner = std::shared_ptr<const void>(a, [](const void* p) {
         static_cast<vtkDataArray*>(const_cast<void*>(p))->UnRegister(nullptr);
       });
-      return gmm::validateHeightfield(hf);
+      return std::string();
     }
   }
   hf.z.resize(n);
@@ -111,7 +112,7 @@ std::string ImageToHeightfield(vtkImageData* image, gmm::Heightfield& hf, vtkDat
     default:
       return "the height array is not numeric";
   }
-  return gmm::validateHeightfield(hf);
+  return std::string();
 }
 
 //------------------------------------------------------------------------------
@@ -236,10 +237,10 @@ bool AcceptBlockSize(vtkObject* self, int quads, int& current)
 //------------------------------------------------------------------------------
 bool AcceptHeightScale(vtkObject* self, double scale, double& current)
 {
-  if (!(scale > 0.0 && std::isfinite(scale)))
+  const std::string err = gmm::validateHeightScale(scale);
+  if (!err.empty())
   {
-    vtkErrorWithObjectMacro(
-      self, "HeightScale must be a finite number > 0, got " << scale << "; keeping " << current);
+    vtkErrorWithObjectMacro(self, "HeightScale: " << err << "; keeping " << current);
     return false;
   }
   if (scale == current)

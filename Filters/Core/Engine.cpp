@@ -66,16 +66,25 @@ const FrameStats& Engine::update(const View& view, double tau)
   return finishFrame(&factor_);
 }
 
+std::string validateHeightScale(double scale)
+{
+  if (scale > 0.0 && std::isfinite(scale))
+  {
+    return std::string();
+  }
+  std::ostringstream why;
+  why << "height scale " << scale << " must be finite and > 0";
+  return why.str();
+}
+
 std::string Engine::setHeightScale(double scale)
 {
-  if (!(scale > 0.0 && std::isfinite(scale)))
+  std::string err = validateHeightScale(scale);
+  if (err.empty())
   {
-    std::ostringstream why;
-    why << "height scale " << scale << " must be finite and > 0";
-    return why.str();
+    heightScale_ = scale;
   }
-  heightScale_ = scale;
-  return std::string();
+  return err;
 }
 
 const FrameStats& Engine::updateForError(double maxError)

@@ -34,6 +34,10 @@ struct FrameStats
   int blocksRetessellated = 0;   // blocks whose triangles were regenerated this frame
 };
 
+// "" when `scale` is a usable vertical exaggeration (finite and > 0), else the reason: the
+// one rule of Engine::setHeightScale and the mapper's and filter's SetHeightScale.
+std::string validateHeightScale(double scale);
+
 class Engine
 {
 public:
