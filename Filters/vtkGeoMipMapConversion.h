@@ -34,7 +34,9 @@ namespace vtkGeoMipMapConversion
  * surface); a direction matrix must be diagonal with entries +-1 (a flip becomes a
  * negative spacing). A one-component float array is shared, not copied (hf.external, the
  * array held by hf.owner) unless it holds heights beyond gmm::kMaxHeight.
- * Returns "" on success, else why the image cannot be used.
+ * Returns "" on success, else why the image cannot be used. The heightfield itself (sizes,
+ * spacing, origin, heights) is checked once, by gmm::buildTerrain (validateHeightfield),
+ * which every consumer calls next: a full pass over the samples is not made twice.
  */
 GEOMIPMAPFILTERS_EXPORT std::string ImageToHeightfield(
   vtkImageData* image, gmm::Heightfield& hf, vtkDataArray* heights = nullptr);
