@@ -130,6 +130,14 @@ CameraFrame cameraFrameOf(const View& v)
 
 namespace
 {
+// The plane scaled so that (a, b, c) is a unit normal (d is then a distance); a degenerate
+// plane is left as it is.
+glm::dvec4 normalisedPlane(const glm::dvec4& p)
+{
+  const double n = robustLength(glm::dvec3(p));
+  return n > 0.0 ? p / n : p;
+}
+
 // Gribb & Hartmann: plane k of the clip volume -w <= x, y, z <= w, as a row combination
 // of the matrix (glm::row would copy; index [column][row] directly).
 glm::dvec4 clipPlane(const glm::dmat4& m, int axis, double sign)
@@ -139,8 +147,7 @@ glm::dvec4 clipPlane(const glm::dmat4& m, int axis, double sign)
   {
     p[c] = m[c][3] + sign * m[c][axis];
   }
-  const double n = robustLength(glm::dvec3(p));
-  return n > 0.0 ? p / n : p;
+  return normalisedPlane(p);
 }
 } // namespace
 
@@ -150,9 +157,7 @@ Frustum transformPlanes(const Frustum& planes, const glm::dmat4& toPlanesFrame)
   const glm::dmat4 t = glm::transpose(toPlanesFrame);
   for (std::size_t k = 0; k < planes.size(); ++k)
   {
-    glm::dvec4 p = t * planes[k];
-    const double n = robustLength(glm::dvec3(p));
-    out[k] = n > 0.0 ? p / n : p;
+    out[k] = normalisedPlane(t * planes[k]);
   }
   return out;
 }
