@@ -36,22 +36,19 @@ int64_t edgeFn(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
 }
 
-int64_t floorDiv(int64_t a, int64_t b) // b > 0
-{
-  return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
-int64_t ceilDiv(int64_t a, int64_t b) // b > 0
-{
-  return a >= 0 ? (a + b - 1) / b : -((-a) / b);
-}
-
 // Error of one triangle over the samples it covers (edges included), in grid space.
 // strict: a nodata vertex or covered nodata sample is an infinite error (the triangle would
 // draw over a hole); otherwise a nodata-touching triangle is an accepted full-res hole.
+//
+// Why a bounding-box scan: every triangle Tessellate emits has one axis-aligned edge (grid
+// quads, and fans whose run lies on a row or column), so its box holds at most twice its
+// samples, and walking the box with incrementally updated edge functions costs a few
+// integer additions per sample, where solving each row's covered span needed three integer
+// divisions per row: most of the table's time at the fine levels, whose triangles cover a
+// handful of samples each.
 float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, bool strict)
 {
-  const int64_t nx = hf.nx;
+  const uint32_t nx = static_cast<uint32_t>(hf.nx);
   const int64_t ax = a % nx, ay = a / nx, bx = b % nx, by = b / nx, cx = c % nx, cy = c / nx;
   const float* z = hf.heights();
   const double za = z[a], zb = z[b], zc = z[c];
@@ -64,44 +61,35 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
   // 6.4e6 m gives the same table as 0 m) and is exactly 0 on a plane, where the absolute
   // barycentric sum w0*za + w1*zb + w2*zc left residues of ~1e-9 m that grew with the offset.
   const double dzb = zb - za, dzc = zc - za;
-  int64_t area = edgeFn(ax, ay, bx, by, cx, cy);
+  const int64_t area = edgeFn(ax, ay, bx, by, cx, cy);
   if (area == 0)
   {
     return 0.0f; // no sample strictly covered; cannot happen for emitted triangles
   }
+  // Barycentric weights times the area, w1 (of b) = edgeFn(c, a, p) and w2 (of c) =
+  // edgeFn(a, b, p), at the box's first sample, and their steps per column and per row;
+  // all multiplied by the sign of the area, so that a sample is covered when w0 = area -
+  // w1 - w2, w1 and w2 are all >= 0. The error expression only changes sign with them.
   const int64_t sign = area < 0 ? -1 : 1;
-  const double fullArea = static_cast<double>(area), invArea = 1.0 / fullArea;
   const int64_t i0 = std::min({ ax, bx, cx }), i1 = std::max({ ax, bx, cx });
   const int64_t j0 = std::min({ ay, by, cy }), j1 = std::max({ ay, by, cy });
-  // Edge e (p -> q) as a function of i on row j: sign * E = slope * i + offset, and a
-  // sample is covered when all three are >= 0. Solving each for i gives the exact covered
-  // span of the row with integers, so skinny strip triangles cost only what they cover.
-  const int64_t px[3] = { bx, cx, ax }, py[3] = { by, cy, ay };
-  const int64_t qx[3] = { cx, ax, bx }, qy[3] = { cy, ay, by };
-  double worst = 0.0;
+  const int64_t twiceArea = sign * area;
+  const int64_t w1Start = sign * edgeFn(cx, cy, ax, ay, i0, j0);
+  const int64_t w2Start = sign * edgeFn(ax, ay, bx, by, i0, j0);
+  const int64_t w1di = sign * (cy - ay), w1dj = sign * (ax - cx);
+  const int64_t w2di = sign * (ay - by), w2dj = sign * (bx - ax);
+  const double fullArea = static_cast<double>(twiceArea);
+  double worst = 0.0; // largest |(h - surface) * area|
   for (int64_t j = j0; j <= j1; ++j)
   {
-    int64_t lo = i0, hi = i1;
-    for (int e = 0; e < 3; ++e)
+    int64_t w1 = w1Start + (j - j0) * w1dj, w2 = w2Start + (j - j0) * w2dj;
+    const float* row = z + j * static_cast<int64_t>(nx);
+    for (int64_t i = i0; i <= i1; ++i, w1 += w1di, w2 += w2di)
     {
-      const int64_t slope = -sign * (qy[e] - py[e]);
-      const int64_t offset = sign * ((qx[e] - px[e]) * (j - py[e]) + (qy[e] - py[e]) * px[e]);
-      if (slope > 0)
+      if (w1 < 0 || w2 < 0 || w1 + w2 > twiceArea)
       {
-        lo = std::max(lo, ceilDiv(-offset, slope));
+        continue; // outside
       }
-      else if (slope < 0)
-      {
-        hi = std::min(hi, floorDiv(offset, -slope));
-      }
-      else if (offset < 0)
-      {
-        hi = lo - 1;
-      }
-    }
-    const float* row = z + j * nx;
-    for (int64_t i = lo; i <= hi; ++i)
-    {
       const float h = row[i];
       if (std::isnan(h))
       {
@@ -111,14 +99,14 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
         }
         continue;
       }
-      const double w1 = static_cast<double>(edgeFn(cx, cy, ax, ay, i, j)); // weight of b
-      const double w2 = static_cast<double>(edgeFn(ax, ay, bx, by, i, j)); // weight of c
       // (h - surface) * area: products of small integers and exact height differences,
-      // so exactly 0 on a plane; then one rounding by the division.
-      worst = std::max(worst, std::abs(((h - za) * fullArea - (w1 * dzb + w2 * dzc)) * invArea));
+      // so exactly 0 on a plane. The one rounding, by the division, comes after the max:
+      // division by a positive constant is monotone, so it gives the max of the quotients.
+      worst = std::max(worst,
+        std::abs((h - za) * fullArea - (static_cast<double>(w1) * dzb + static_cast<double>(w2) * dzc)));
     }
   }
-  return roundUpToFloat(worst);
+  return roundUpToFloat(worst / fullArea);
 }
 
 float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
@@ -152,18 +140,21 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     BlockConfig cfg;
     cfg.level = m;
     cfg.edgeLevel = { m, m, m, m };
+    // Level 0 with its own edges has every sample as a vertex: its error is exactly 0
+    // (a vertex's residual is (zb - za) * A - A * (zb - za) = 0 in double), so only its
+    // strips towards coarser edges are rasterised.
     float e = 0.0f;
     if (shape != BlockShape::Ring)
     {
-      e = partError(hf, qt, block, cfg, BlockPart::Whole, strict, scratch);
+      e = m == 0 ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Whole, strict, scratch);
     }
     else
     {
-      e = partError(hf, qt, block, cfg, BlockPart::Inner, strict, scratch);
+      e = m == 0 ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Inner, strict, scratch);
       for (int side = 0; side < 4; ++side)
       {
         const BlockPart part = static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + side);
-        float previous = partError(hf, qt, block, cfg, part, strict, scratch);
+        float previous = m == 0 ? 0.0f : partError(hf, qt, block, cfg, part, strict, scratch);
         e = std::max(e, previous);
         // Coarser edges: from the first coarser level until the edge is just its corners;
         // beyond that the strip no longer changes.
