@@ -40,18 +40,18 @@ int64_t edgeFn(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64
 // strict: a nodata vertex or covered nodata sample is an infinite error (the triangle would
 // draw over a hole); otherwise a nodata-touching triangle is an accepted full-res hole.
 //
-// Why a bounding-box scan: every triangle Tessellate emits has one axis-aligned edge (grid
-// quads, and fans whose run lies on a row or column), so its box holds at most twice its
-// samples, and walking the box with incrementally updated edge functions costs a few
-// integer additions per sample, where solving each row's covered span needed three integer
-// divisions per row: most of the table's time at the fine levels, whose triangles cover a
-// handful of samples each.
-float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, bool strict)
+// Why a bounding-box scan with incrementally updated edge functions: a few integer
+// additions per tested sample. Solving each row's covered span exactly needs integer
+// divisions per row, which cost more than they save here: most triangles cover a handful
+// of samples per row (measured: 4097^2, one thread, 1.20 s scanning boxes against 1.32 s
+// solving spans, although the long thin fans of the side strips make the boxes hold ~2.7
+// tested samples per covered one).
+float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict)
 {
-  const uint32_t nx = static_cast<uint32_t>(hf.nx);
-  const int64_t ax = a % nx, ay = a / nx, bx = b % nx, by = b / nx, cx = c % nx, cy = c / nx;
+  const int64_t nx = hf.nx;
+  const int64_t ax = t.v[0].i, ay = t.v[0].j, bx = t.v[1].i, by = t.v[1].j, cx = t.v[2].i, cy = t.v[2].j;
   const float* z = hf.heights();
-  const double za = z[a], zb = z[b], zc = z[c];
+  const double za = z[ay * nx + ax], zb = z[by * nx + bx], zc = z[cy * nx + cx];
   if (std::isnan(za) || std::isnan(zb) || std::isnan(zc))
   {
     return strict ? kInf : 0.0f;
@@ -83,7 +83,7 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
   for (int64_t j = j0; j <= j1; ++j)
   {
     int64_t w1 = w1Start + (j - j0) * w1dj, w2 = w2Start + (j - j0) * w2dj;
-    const float* row = z + j * static_cast<int64_t>(nx);
+    const float* row = z + j * nx;
     for (int64_t i = i0; i <= i1; ++i, w1 += w1di, w2 += w2di)
     {
       if (w1 < 0 || w2 < 0 || w1 + w2 > twiceArea)
@@ -109,16 +109,85 @@ float triangleError(const Heightfield& hf, uint32_t a, uint32_t b, uint32_t c, b
   return roundUpToFloat(worst / fullArea);
 }
 
-float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
-  BlockPart part, bool strict, std::vector<uint32_t>& scratch)
+// Residual (h - surface) * s^2 of sample (I0 + u, J0 + v) in the cell of side s whose
+// corner heights relative to z00 are d10 = z(s, 0) - z00, d11, d01. The cell is split
+// along its (0, 0)-(s, s) diagonal as TriangleSink::quad does; the weights are the very
+// integers triangleError derives for those two triangles, so the arithmetic is the same.
+inline double cellResidual(double h, double z00, double area, int64_t s, int64_t u, int64_t v,
+  double d10, double d11, double d01)
 {
-  scratch.clear();
-  emitBlock(hf, qt, block, cfg, part, scratch, true);
-  return trianglesError(hf, scratch, strict);
+  return u >= v
+    ? (h - z00) * area - (static_cast<double>(s * (u - v)) * d10 + static_cast<double>(s * v) * d11)
+    : (h - z00) * area - (static_cast<double>(s * u) * d11 + static_cast<double>(s * (v - u)) * d01);
+}
+
+} // namespace
+
+float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std::vector<int>& R)
+{
+  // drawArea's cells: columns C[1..k-1] and rows R[1..L-1], all one step apart.
+  if (C.size() < 4 || R.size() < 4)
+  {
+    return 0.0f; // fewer than two inner columns or rows: no cell
+  }
+  const int64_t s = C[2] - C[1];
+  const int64_t cellsX = static_cast<int64_t>(C.size()) - 3, cellsY = static_cast<int64_t>(R.size()) - 3;
+  const int64_t iFirst = C[1], jFirst = R[1];
+  const int64_t iLast = iFirst + cellsX * s, jLast = jFirst + cellsY * s;
+  const int64_t nx = hf.nx;
+  const float* z = hf.heights();
+  const double area = static_cast<double>(s * s);
+  double worst = 0.0;
+  bool nodata = false;
+  // Every sample of the inner rectangle once: cell (cu, cv) takes its half-open square, the
+  // last column and row of cells also their far side. A sample on a cell border lies on an
+  // edge of both cells' triangles, where they interpolate the same two corners.
+  for (int64_t j = jFirst; j <= jLast; ++j)
+  {
+    const int64_t cv = std::min((j - jFirst) / s, cellsY - 1);
+    const int64_t J0 = jFirst + cv * s, v = j - J0;
+    const float* row0 = z + J0 * nx;
+    const float* row1 = z + (J0 + s) * nx;
+    const float* row = z + j * nx;
+    for (int64_t cu = 0; cu < cellsX; ++cu)
+    {
+      const int64_t I0 = iFirst + cu * s;
+      const double z00 = row0[I0];
+      const double d10 = row0[I0 + s] - z00, d11 = row1[I0 + s] - z00, d01 = row1[I0] - z00;
+      const int64_t uEnd = cu + 1 < cellsX ? s - 1 : s;
+      for (int64_t u = 0; u <= uEnd; ++u)
+      {
+        const float h = row[I0 + u];
+        nodata |= std::isnan(h);
+        worst = std::max(worst, std::abs(cellResidual(h, z00, area, s, u, v, d10, d11, d01)));
+      }
+    }
+  }
+  // A nodata corner or sample: the cells would draw over a hole (all inner levels > 0 are
+  // strict). NaN residuals do not enter std::max(worst, NaN), hence the separate flag.
+  return nodata ? kInf : roundUpToFloat(worst / area);
+}
+
+namespace
+{
+
+// Buffers one worker reuses for every part it rasterises.
+struct Scratch
+{
+  std::vector<GridTriangle> triangles;
+  EmitScratch emit;
+};
+
+float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
+  BlockPart part, bool strict, Scratch& scratch)
+{
+  scratch.triangles.clear();
+  emitBlockGrid(qt, block, cfg, part, scratch.triangles, scratch.emit);
+  return trianglesError(hf, scratch.triangles, strict);
 }
 
 void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable& t,
-  std::vector<uint32_t>& scratch)
+  Scratch& scratch)
 {
   const int width = qt.blockWidth(block), height = qt.blockHeight(block);
   const int top = topLevel(width, height);
@@ -150,7 +219,12 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     }
     else
     {
-      e = m == 0 ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Inner, strict, scratch);
+      if (m > 0)
+      {
+        edgeSamples(qt.colStart[block % qt.blockCols], qt.colStart[block % qt.blockCols + 1], m, scratch.emit.cols);
+        edgeSamples(qt.rowStart[block / qt.blockCols], qt.rowStart[block / qt.blockCols + 1], m, scratch.emit.rows);
+        e = innerAreaError(hf, scratch.emit.cols, scratch.emit.rows);
+      }
       for (int side = 0; side < 4; ++side)
       {
         const BlockPart part = static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + side);
@@ -187,12 +261,12 @@ float ErrorTable::strip(int block, int side, int m, int n) const
   return stripError[(static_cast<std::size_t>(block) * 4 + side) * pairs + pairIndex(m, n)];
 }
 
-float trianglesError(const Heightfield& hf, const std::vector<uint32_t>& tris, bool strictNodata)
+float trianglesError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool strictNodata)
 {
   float worst = 0.0f;
-  for (std::size_t k = 0; k + 2 < tris.size(); k += 3)
+  for (const GridTriangle& t : tris)
   {
-    worst = std::max(worst, triangleError(hf, tris[k], tris[k + 1], tris[k + 2], strictNodata));
+    worst = std::max(worst, triangleError(hf, t, strictNodata));
     if (worst == kInf)
     {
       break;
@@ -223,7 +297,7 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   // the DEM spread evenly.
   std::atomic<std::size_t> done{ 0 };
   auto work = [&](unsigned first) {
-    std::vector<uint32_t> scratch;
+    Scratch scratch;
     for (std::size_t b = first; b < blocks; b += workers)
     {
       fillBlock(hf, qt, static_cast<int>(b), t, scratch);

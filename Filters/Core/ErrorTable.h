@@ -12,6 +12,7 @@
 
 #include "Heightfield.h"
 #include "Quadtree.h"
+#include "Tessellate.h"
 
 #include <cstdint>
 #include <functional>
@@ -49,8 +50,15 @@ struct ErrorTable
 ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads = 0,
   const std::function<void(double)>& progress = nullptr);
 
-// Maximum vertical error of the samples covered by a list of triangles (grid indices),
-// the building block of the table; exposed for tests.
-float trianglesError(const Heightfield& hf, const std::vector<uint32_t>& tris, bool strictNodata);
+// Error of the inner grid of a ring block at a level > 0 (what Tessellate's drawArea
+// emits over inner columns C[1..k-1] and rows R[1..L-1], C and R from edgeSamples), with
+// every sample evaluated once in a direct walk over the cells: the same value as
+// rasterising those triangles (up to the rounding of a sample on a cell border, which both
+// cells interpolate alike), at a fraction of the cost. Nodata anywhere gives +inf.
+float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std::vector<int>& R);
+
+// Maximum vertical error of the samples covered by a list of triangles (grid points), the
+// building block of the table; exposed for tests.
+float trianglesError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool strictNodata);
 
 } // namespace gmm

@@ -10,11 +10,6 @@ namespace gmm
 namespace
 {
 
-struct GridPoint
-{
-  int i, j;
-};
-
 // Collects triangles for one block: converts grid points to vertex indices, drops triangles
 // touching nodata unless asked to keep them, and keeps counter-clockwise world winding.
 class TriangleSink
@@ -59,6 +54,26 @@ private:
   bool mirrored_;
 };
 
+// Collects triangles as grid points, counter-clockwise in (i, j), nodata or not: what the
+// error table rasterises (no vertex index to divide back into a grid position).
+class GridSink
+{
+public:
+  explicit GridSink(std::vector<GridTriangle>& out)
+    : out_(out)
+  {
+  }
+  void triangle(GridPoint a, GridPoint b, GridPoint c) { out_.push_back(GridTriangle{ { a, b, c } }); }
+  void quad(int i0, int j0, int i1, int j1)
+  {
+    triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
+    triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
+  }
+
+private:
+  std::vector<GridTriangle>& out_;
+};
+
 struct BlockRect
 {
   int i0, i1, j0, j1;
@@ -70,28 +85,30 @@ BlockRect blockRect(const Quadtree& qt, int block)
   return BlockRect{ qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1] };
 }
 
-// One row band of the inner grid: quads between rows ja and jb over the given columns.
-void drawHStrip(TriangleSink& sink, const std::vector<int>& cols, int ja, int jb)
+// One row band of the inner grid: quads between rows ja and jb over columns cols[0..count).
+template <typename Sink>
+void drawHStrip(Sink& sink, const int* cols, std::size_t count, int ja, int jb)
 {
-  for (std::size_t u = 0; u + 1 < cols.size(); ++u)
+  for (std::size_t u = 0; u + 1 < count; ++u)
   {
     sink.quad(cols[u], ja, cols[u + 1], jb);
   }
 }
 
 // Inner grid of a ring block: samples cols[1..k-1] x rows[1..L-1] at the block's own step.
-void drawArea(TriangleSink& sink, const std::vector<int>& C, const std::vector<int>& R)
+template <typename Sink>
+void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
 {
-  const std::vector<int> inner(C.begin() + 1, C.end() - 1);
   for (std::size_t t = 1; t + 2 < R.size(); ++t)
   {
-    drawHStrip(sink, inner, R[t], R[t + 1]);
+    drawHStrip(sink, C.data() + 1, C.size() - 2, R[t], R[t + 1]);
   }
 }
 
 // Fan from `apex` over consecutive points run[first..last], which lie on the line opposite
 // the apex. apexOnOuter says which side of the strip the apex is on, to keep CCW order.
-void drawFan(TriangleSink& sink, GridPoint apex, const std::vector<GridPoint>& run,
+template <typename Sink>
+void drawFan(Sink& sink, GridPoint apex, const std::vector<GridPoint>& run,
   std::size_t first, std::size_t last, bool apexOnOuter)
 {
   for (std::size_t k = first; k < last; ++k)
@@ -115,8 +132,8 @@ void drawFan(TriangleSink& sink, GridPoint apex, const std::vector<GridPoint>& r
 // `innerFirst` picks the quad's diagonal: the merge then splits it along the same
 // (i, j)-(i+1, j+1) diagonal as the inner grid, so that a block with its own edges draws
 // one regular triangulation (at level 0, exactly the full-resolution one).
-template <typename Along>
-void drawSideStrip(TriangleSink& sink, const std::vector<GridPoint>& outer,
+template <typename Sink, typename Along>
+void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
   const std::vector<GridPoint>& inner, Along along, bool innerFirst)
 {
   // True when the outer point at position x is to be joined before the inner one at y.
@@ -153,11 +170,15 @@ void drawSideStrip(TriangleSink& sink, const std::vector<GridPoint>& outer,
   }
 }
 
-void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
-  const std::vector<int>& R, int side, int edgeLevel)
+template <typename Sink>
+void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
+  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch)
 {
-  std::vector<int> edge;
-  std::vector<GridPoint> outer, inner;
+  std::vector<int>& edge = scratch.edge;
+  std::vector<GridPoint>& outer = scratch.outer;
+  std::vector<GridPoint>& inner = scratch.inner;
+  outer.clear();
+  inner.clear();
   const std::size_t k = C.size() - 1, L = R.size() - 1;
   switch (side)
   {
@@ -196,12 +217,10 @@ void drawSide(TriangleSink& sink, const BlockRect& r, const std::vector<int>& C,
   }
 }
 
-} // namespace
-
-void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
-  BlockPart part, std::vector<uint32_t>& out, bool keepNodata)
+template <typename Sink>
+void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, EmitScratch& scratch)
 {
-  TriangleSink sink(hf, out, keepNodata);
   const BlockRect r = blockRect(qt, block);
   const BlockShape shape = blockShape(r.i1 - r.i0, r.j1 - r.j0, config.level);
   if (shape == BlockShape::OneQuad || shape == BlockShape::Thin)
@@ -226,7 +245,8 @@ void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const Block
   {
     return;
   }
-  std::vector<int> C, R;
+  std::vector<int>& C = scratch.cols;
+  std::vector<int>& R = scratch.rows;
   edgeSamples(r.i0, r.i1, config.level, C);
   edgeSamples(r.j0, r.j1, config.level, R);
   if (part == BlockPart::Whole || part == BlockPart::Inner)
@@ -239,9 +259,26 @@ void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const Block
       static_cast<int>(part) == static_cast<int>(BlockPart::StripSouth) + side;
     if (wanted)
     {
-      drawSide(sink, r, C, R, side, config.edgeLevel[side]);
+      drawSide(sink, r, C, R, side, config.edgeLevel[side], scratch);
     }
   }
+}
+
+} // namespace
+
+void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, std::vector<uint32_t>& out, bool keepNodata)
+{
+  TriangleSink sink(hf, out, keepNodata);
+  EmitScratch scratch;
+  emitBlockTo(sink, qt, block, config, part, scratch);
+}
+
+void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, BlockPart part,
+  std::vector<GridTriangle>& out, EmitScratch& scratch)
+{
+  GridSink sink(out);
+  emitBlockTo(sink, qt, block, config, part, scratch);
 }
 
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block)

@@ -47,10 +47,34 @@ struct BlockConfig
   std::array<int, 4> edgeLevel{ 0, 0, 0, 0 }; // per side, >= level (coarser neighbour) or == level
 };
 
+struct GridPoint
+{
+  int i, j; // column, row
+};
+
+// One triangle as grid points, counter-clockwise in (i, j) grid space.
+struct GridTriangle
+{
+  GridPoint v[3];
+};
+
+// Buffers emitBlock needs; a caller that emits many parts (the error table) keeps one so
+// that emitting allocates nothing once they have grown.
+struct EmitScratch
+{
+  std::vector<int> cols, rows, edge;
+  std::vector<GridPoint> outer, inner;
+};
+
 // Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a
 // vertex is NaN if `keepNodata` is true (used by the error table to see holes).
 void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
   BlockPart part, std::vector<uint32_t>& out, bool keepNodata = false);
+
+// The same triangles as grid points, nodata or not (for the error table, which needs the
+// grid positions and sees holes itself). `out` is appended to.
+void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, BlockPart part,
+  std::vector<GridTriangle>& out, EmitScratch& scratch);
 
 // Edge level of each side of `block` given every block's level (-1 = not drawn): the
 // coarser of the two blocks when the neighbour is drawn, else the block's own level.
