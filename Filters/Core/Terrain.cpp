@@ -1,6 +1,8 @@
 #include "Terrain.h"
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -9,8 +11,12 @@ namespace gmm
 {
 
 std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
-  std::shared_ptr<const Terrain>& out, const ProgressFn& progress)
+  std::shared_ptr<const Terrain>& out, const ProgressFn& progress,
+  const TableCacheOptions& cache, TableCacheReport* report)
 {
+  TableCacheReport unused;
+  TableCacheReport& r = report ? *report : unused;
+  r = TableCacheReport();
   out.reset();
   std::string err = validateHeightfield(hf);
   if (err.empty())
@@ -26,7 +32,51 @@ std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
   t->hf = std::move(hf);
   t->maxBlockQuads = maxBlockQuads;
   t->qt = buildQuadtree(t->hf, maxBlockQuads);
-  t->table = buildErrorTable(t->hf, t->qt, threads, progress);
+  r.used = !cache.directory.empty() && t->hf.sampleCount() >= cache.minSamples;
+  TableCacheKey key;
+  if (r.used)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    key.heightsHash = hashHeights(t->hf, threads);
+    key.nx = t->hf.nx;
+    key.ny = t->hf.ny;
+    key.maxBlockQuads = maxBlockQuads;
+    r.hashSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.path = tableCachePath(cache.directory, key);
+    const std::string why = readTableCache(r.path, key, t->qt, t->table);
+    r.hit = why.empty();
+    if (r.hit)
+    {
+      // Refresh its time: trimming removes the least recently used tables first.
+      std::error_code ec;
+      std::filesystem::last_write_time(r.path, std::filesystem::file_time_type::clock::now(), ec);
+    }
+    else if (why != "no file")
+    {
+      r.problem = why; // corrupt, stale or unreadable: rebuilt below, and replaced
+    }
+  }
+  if (!r.hit)
+  {
+    t->table = buildErrorTable(t->hf, t->qt, threads, progress);
+    if (r.used)
+    {
+      const std::string why = writeTableCache(r.path, key, t->table);
+      r.written = why.empty();
+      if (!why.empty())
+      {
+        r.problem += (r.problem.empty() ? "" : "; ") + why;
+      }
+      else
+      {
+        trimTableCache(cache.directory, cache.maxBytes);
+      }
+    }
+  }
+  else if (progress)
+  {
+    progress(1.0);
+  }
   out = std::move(t);
   return std::string();
 }

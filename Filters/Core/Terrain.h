@@ -11,6 +11,7 @@
 #include "ErrorTable.h"
 #include "Heightfield.h"
 #include "Quadtree.h"
+#include "TableCache.h"
 
 #include <functional>
 #include <memory>
@@ -35,8 +36,12 @@ using ProgressFn = std::function<void(double)>;
 // when they hold an infinity), builds the quadtree and the error table with up to `threads`
 // workers (0 = hardware concurrency). Returns "" and sets `out`, or the reason (out reset).
 // A DEM that is all nodata is accepted and draws nothing: a void tile is valid data.
+// With a cache directory (TableCache.h) the table is read from its file when one is there
+// and passes every check, else built and saved; `report` (may be null) says which, and why
+// a file was not used or could not be written. The cache never makes the build fail.
 std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
-  std::shared_ptr<const Terrain>& out, const ProgressFn& progress = nullptr);
+  std::shared_ptr<const Terrain>& out, const ProgressFn& progress = nullptr,
+  const TableCacheOptions& cache = TableCacheOptions(), TableCacheReport* report = nullptr);
 
 // x, y bounds (xmin, xmax, ymin, ymax) of the rows and columns of `t` that hold a valid
 // (non-NaN) sample; false when none does. Blocks without nodata are taken whole, only

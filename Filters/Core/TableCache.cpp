@@ -1,0 +1,329 @@
+#include "TableCache.h"
+
+#include "Levels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+#include <vector>
+
+namespace gmm
+{
+
+namespace
+{
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
+// Version 1: the table of the four-side-strip tessellation (ErrorTable.h). Any change of
+// the table's meaning or layout changes it, and older files are then rebuilt.
+constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kByteOrderMark = 0x01020304u;
+constexpr const char* kExtension = ".gmmtable";
+
+// A 64-bit multiply-rotate hash over 8-byte words in four independent lanes (so that the
+// multiplications overlap): fast enough that hashing a 1 GiB DEM costs a fraction of a
+// second, and a changed bit anywhere changes the result. Not cryptographic: it detects
+// changed data and corruption, not a forged file.
+constexpr uint64_t kP1 = 0x9E3779B185EBCA87ull, kP2 = 0xC2B2AE3D27D4EB4Full, kP3 = 0x165667B19E3779F9ull;
+
+uint64_t rotl(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+uint64_t round64(uint64_t lane, uint64_t word) { return rotl(lane + word * kP2, 31) * kP1; }
+uint64_t avalanche(uint64_t h)
+{
+  h ^= h >> 33;
+  h *= kP2;
+  h ^= h >> 29;
+  h *= kP3;
+  h ^= h >> 32;
+  return h;
+}
+
+uint64_t hashBytes(const unsigned char* p, std::size_t n, uint64_t seed)
+{
+  uint64_t lane[4] = { seed + kP1 + kP2, seed + kP2, seed, seed - kP1 };
+  std::size_t k = 0;
+  for (; k + 32 <= n; k += 32)
+  {
+    for (int l = 0; l < 4; ++l)
+    {
+      uint64_t w;
+      std::memcpy(&w, p + k + 8 * l, 8);
+      lane[l] = round64(lane[l], w);
+    }
+  }
+  uint64_t h = rotl(lane[0], 1) + rotl(lane[1], 7) + rotl(lane[2], 12) + rotl(lane[3], 18);
+  h += static_cast<uint64_t>(n);
+  for (; k < n; ++k)
+  {
+    h = rotl(h ^ (p[k] * kP3), 11) * kP1;
+  }
+  return avalanche(h);
+}
+
+// Combines chunk hashes in order.
+uint64_t combine(uint64_t h, uint64_t chunk) { return avalanche(rotl(h ^ round64(0, chunk), 27) * kP1 + kP3); }
+
+#pragma pack(push, 1)
+struct FileHeader
+{
+  char magic[8];
+  uint32_t version;
+  uint32_t byteOrder;
+  uint64_t heightsHash;
+  int32_t nx, ny, maxBlockQuads, levels, pairs, blocks;
+  uint32_t reserved;
+};
+#pragma pack(pop)
+
+// The table's level count for a quadtree, as buildErrorTable derives it.
+int tableLevels(const Quadtree& qt)
+{
+  int maxTop = 0;
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    maxTop = std::max(maxTop, topLevel(qt.blockWidth(b), qt.blockHeight(b)));
+  }
+  return maxTop + 1;
+}
+
+bool tableValue(float v) { return v >= 0.0f; } // false for NaN and negatives; +inf passes
+
+std::string hex(uint64_t v)
+{
+  char s[17];
+  std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(v));
+  return s;
+}
+} // namespace
+
+uint64_t hashHeights(const Heightfield& hf, int threads)
+{
+  const float* z = hf.heights();
+  const std::size_t count = hf.sampleCount();
+  constexpr std::size_t kChunk = std::size_t(1) << 20; // samples per chunk (4 MiB)
+  const std::size_t chunks = (count + kChunk - 1) / kChunk;
+  std::vector<uint64_t> chunkHash(chunks, 0);
+  unsigned workers = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(std::max<std::size_t>(chunks, 1))));
+  auto work = [&](unsigned first) {
+    for (std::size_t c = first; c < chunks; c += workers)
+    {
+      const std::size_t begin = c * kChunk, n = std::min(kChunk, count - begin);
+      chunkHash[c] = hashBytes(reinterpret_cast<const unsigned char*>(z + begin), n * sizeof(float), c);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w)
+  {
+    pool.emplace_back(work, w);
+  }
+  work(0);
+  for (std::thread& t : pool)
+  {
+    t.join();
+  }
+  uint64_t h = combine(static_cast<uint64_t>(hf.nx), static_cast<uint64_t>(hf.ny));
+  for (uint64_t c : chunkHash)
+  {
+    h = combine(h, c);
+  }
+  return h;
+}
+
+std::string tableCachePath(const std::string& directory, const TableCacheKey& key)
+{
+  const std::string name = hex(key.heightsHash) + "-" + std::to_string(key.nx) + "x" +
+    std::to_string(key.ny) + "-b" + std::to_string(key.maxBlockQuads) + "-v" +
+    std::to_string(kFormatVersion) + kExtension;
+  return (fs::path(directory) / name).string();
+}
+
+std::string readTableCache(const std::string& path, const TableCacheKey& key, const Quadtree& qt,
+  ErrorTable& out)
+{
+  out = ErrorTable();
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+  {
+    return "no file";
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    return "cannot open " + path;
+  }
+  FileHeader h{};
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof h))
+  {
+    return path + ": truncated header";
+  }
+  if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
+  {
+    return path + ": not an error table file";
+  }
+  if (h.version != kFormatVersion)
+  {
+    return path + ": format version " + std::to_string(h.version) + ", expected " +
+      std::to_string(kFormatVersion);
+  }
+  if (h.byteOrder != kByteOrderMark)
+  {
+    return path + ": written with another byte order";
+  }
+  if (h.heightsHash != key.heightsHash || h.nx != key.nx || h.ny != key.ny ||
+    h.maxBlockQuads != key.maxBlockQuads)
+  {
+    return path + ": stale (made for other heights or another block size)";
+  }
+  const int levels = tableLevels(qt);
+  const int pairs = levels * (levels - 1) / 2;
+  if (h.blocks != qt.blockCount() || h.levels != levels || h.pairs != pairs)
+  {
+    return path + ": sizes do not match the quadtree";
+  }
+  const std::size_t blocks = static_cast<std::size_t>(h.blocks);
+  const std::size_t own = blocks * levels, strips = blocks * 4 * std::max(1, pairs);
+  const std::size_t dataBytes = (2 * own + strips) * sizeof(float);
+  const uintmax_t expected = sizeof h + dataBytes + sizeof(uint64_t);
+  if (fs::file_size(path, ec) != expected || ec)
+  {
+    return path + ": wrong size (truncated or padded)";
+  }
+  out.levels = levels;
+  out.pairs = pairs;
+  out.ownError.resize(own);
+  out.ownErrorExact.resize(own);
+  out.stripError.resize(strips);
+  uint64_t stored = 0;
+  in.read(reinterpret_cast<char*>(out.ownError.data()), own * sizeof(float));
+  in.read(reinterpret_cast<char*>(out.ownErrorExact.data()), own * sizeof(float));
+  in.read(reinterpret_cast<char*>(out.stripError.data()), strips * sizeof(float));
+  in.read(reinterpret_cast<char*>(&stored), sizeof stored);
+  if (!in)
+  {
+    out = ErrorTable();
+    return path + ": read failed";
+  }
+  uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
+  for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError })
+  {
+    sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
+  }
+  if (sum != stored)
+  {
+    out = ErrorTable();
+    return path + ": checksum mismatch (corrupt)";
+  }
+  for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError })
+  {
+    if (!std::all_of(v->begin(), v->end(), tableValue))
+    {
+      out = ErrorTable();
+      return path + ": holds values no table can hold";
+    }
+  }
+  return std::string();
+}
+
+std::string writeTableCache(const std::string& path, const TableCacheKey& key, const ErrorTable& table)
+{
+  std::error_code ec;
+  const fs::path target(path);
+  if (target.has_parent_path())
+  {
+    fs::create_directories(target.parent_path(), ec);
+    if (ec)
+    {
+      return "cannot create " + target.parent_path().string() + ": " + ec.message();
+    }
+  }
+  FileHeader h{};
+  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  h.version = kFormatVersion;
+  h.byteOrder = kByteOrderMark;
+  h.heightsHash = key.heightsHash;
+  h.nx = key.nx;
+  h.ny = key.ny;
+  h.maxBlockQuads = key.maxBlockQuads;
+  h.levels = table.levels;
+  h.pairs = table.pairs;
+  h.blocks = table.levels > 0 ? static_cast<int32_t>(table.ownError.size() / table.levels) : 0;
+  uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
+  for (const std::vector<float>* v : { &table.ownError, &table.ownErrorExact, &table.stripError })
+  {
+    sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
+  }
+  // A private temporary name in the same directory, then an atomic rename.
+  std::random_device rd;
+  const std::string tmp = path + ".tmp" + hex((static_cast<uint64_t>(rd()) << 32) ^ rd());
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f)
+    {
+      return "cannot write " + tmp;
+    }
+    f.write(reinterpret_cast<const char*>(&h), sizeof h);
+    for (const std::vector<float>* v : { &table.ownError, &table.ownErrorExact, &table.stripError })
+    {
+      f.write(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(float));
+    }
+    f.write(reinterpret_cast<const char*>(&sum), sizeof sum);
+    f.close();
+    if (!f)
+    {
+      fs::remove(tmp, ec);
+      return "cannot write " + tmp + " (disk full?)";
+    }
+  }
+  fs::rename(tmp, target, ec);
+  if (ec)
+  {
+    const std::string why = ec.message();
+    fs::remove(tmp, ec);
+    return "cannot rename " + tmp + " to " + path + ": " + why;
+  }
+  return std::string();
+}
+
+void trimTableCache(const std::string& directory, uint64_t maxBytes)
+{
+  struct Entry
+  {
+    fs::path path;
+    fs::file_time_type time;
+    uintmax_t bytes;
+  };
+  std::vector<Entry> files;
+  uintmax_t total = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(directory, ec), end; !ec && it != end; it.increment(ec))
+  {
+    const fs::path& p = it->path();
+    if (p.extension() != kExtension || !it->is_regular_file(ec))
+    {
+      continue;
+    }
+    Entry e{ p, it->last_write_time(ec), it->file_size(ec) };
+    if (!ec)
+    {
+      total += e.bytes;
+      files.push_back(std::move(e));
+    }
+  }
+  std::sort(files.begin(), files.end(), [](const Entry& a, const Entry& b) { return a.time < b.time; });
+  for (std::size_t k = 0; k < files.size() && total > maxBytes; ++k)
+  {
+    if (fs::remove(files[k].path, ec))
+    {
+      total -= files[k].bytes;
+    }
+  }
+}
+
+} // namespace gmm
