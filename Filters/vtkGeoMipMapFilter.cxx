@@ -50,6 +50,7 @@ vtkGeoMipMapFilter::~vtkGeoMipMapFilter()
 {
   this->SetCamera(nullptr);
   this->SetModelMatrix(nullptr);
+  this->SetTableCacheDirectory(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -87,7 +88,8 @@ int vtkGeoMipMapFilter::RequestData(
   }
   Internals& in = *this->Internal;
   std::string err;
-  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err);
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err,
+    vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory));
   if (!terrain)
   {
     in.Terrain = nullptr;
@@ -212,8 +214,10 @@ double vtkGeoMipMapFilter::GetHeightAt(double x, double y)
   }
   this->GetInputAlgorithm()->Update();
   std::string err;
-  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(
-    vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0)), this->BlockSize, this, err);
+  vtkGeoMipMapTerrain* terrain =
+    vtkGeoMipMapTerrain::Get(vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0)),
+      this->BlockSize, this, err,
+      vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory));
   if (!terrain)
   {
     vtkErrorMacro("Cannot use the input image: " << err);
@@ -258,6 +262,9 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
+  os << indent << "TableCache: " << this->TableCache << "\n";
+  os << indent << "TableCacheDirectory: "
+     << (this->TableCacheDirectory ? this->TableCacheDirectory : "(default)") << "\n";
   os << indent << "MaximumGeometricError: " << this->MaximumGeometricError << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "ModelMatrix: " << this->ModelMatrix << "\n";

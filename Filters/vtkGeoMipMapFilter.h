@@ -92,6 +92,23 @@ public:
 
   ///@{
   /**
+   * Error table cache (see vtkGeoMipMapTerrain), on by default: the tables of a DEM of
+   * 2^20 samples or more are saved to a file keyed by the heights' content hash and the
+   * block size, and the next open of the same DEM reads them instead of building them.
+   * TableCacheDirectory: where; null or empty (default) uses
+   * vtkGeoMipMapTerrain::DefaultTableCacheDirectory() ($GEOMIPMAP_CACHE_DIR,
+   * $XDG_CACHE_HOME/geomipmap or ~/.cache/geomipmap). A location that cannot be written
+   * gives a warning; the tables are built as without a cache.
+   */
+  vtkSetMacro(TableCache, bool);
+  vtkGetMacro(TableCache, bool);
+  vtkBooleanMacro(TableCache, bool);
+  vtkSetStringMacro(TableCacheDirectory);
+  vtkGetStringMacro(TableCacheDirectory);
+  ///@}
+
+  ///@{
+  /**
    * Vertical exaggeration: the surface is at origin z + HeightScale * h. Finite and > 0,
    * else refused with an error (previous value kept). Default 1. Changing it does not
    * rebuild the error tables.
@@ -132,6 +149,8 @@ protected:
   int ViewportSize[2] = { 1280, 720 };
   double PixelError = 1.0;
   int BlockSize = 64;
+  bool TableCache = true;
+  char* TableCacheDirectory = nullptr;
   double MaximumGeometricError = 0.0;
 
 private:

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdlib>
 
 vtkStandardNewMacro(vtkGeoMipMapTerrain);
 vtkInformationKeyMacro(vtkGeoMipMapTerrain, TERRAIN, ObjectBase);
@@ -67,8 +68,44 @@ bool vtkGeoMipMapTerrain::IsCurrentFor(vtkImageData* image, vtkDataArray* height
 }
 
 //------------------------------------------------------------------------------
-vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Get(
-  vtkImageData* image, int blockSize, vtkAlgorithm* progress, std::string& error)
+std::string vtkGeoMipMapTerrain::DefaultTableCacheDirectory()
+{
+  if (const char* dir = std::getenv("GEOMIPMAP_CACHE_DIR"))
+  {
+    return std::string(dir) == "off" ? std::string() : std::string(dir);
+  }
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"))
+  {
+    if (*xdg)
+    {
+      return std::string(xdg) + "/geomipmap";
+    }
+  }
+  if (const char* home = std::getenv("HOME"))
+  {
+    if (*home)
+    {
+      return std::string(home) + "/.cache/geomipmap";
+    }
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+gmm::TableCacheOptions vtkGeoMipMapTerrain::TableCacheOptions(bool enabled, const char* directory)
+{
+  gmm::TableCacheOptions options;
+  if (enabled)
+  {
+    options.directory =
+      directory && *directory ? std::string(directory) : DefaultTableCacheDirectory();
+  }
+  return options;
+}
+
+//------------------------------------------------------------------------------
+vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Get(vtkImageData* image, int blockSize,
+  vtkAlgorithm* progress, std::string& error, const gmm::TableCacheOptions& cache)
 {
   error.clear();
   if (!image)
@@ -86,6 +123,7 @@ vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Get(
   gmm::Heightfield hf;
   error = vtkGeoMipMapConversion::ImageToHeightfield(image, hf);
   std::shared_ptr<const gmm::Terrain> terrain;
+  gmm::TableCacheReport cacheReport;
   if (error.empty())
   {
     gmm::ProgressFn report;
@@ -93,14 +131,27 @@ vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Get(
     {
       report = [progress](double f) { progress->UpdateProgress(f); };
     }
-    error = gmm::buildTerrain(std::move(hf), blockSize, 0, terrain, report);
+    error = gmm::buildTerrain(std::move(hf), blockSize, 0, terrain, report, cache, &cacheReport);
   }
   if (!error.empty())
   {
     return nullptr;
   }
+  if (!cacheReport.problem.empty())
+  {
+    // The tables are fine (built); only the cache could not serve or keep them.
+    if (progress)
+    {
+      vtkWarningWithObjectMacro(progress, "Table cache: " << cacheReport.problem);
+    }
+    else
+    {
+      vtkGenericWarningMacro("geomipmap table cache: " << cacheReport.problem);
+    }
+  }
   vtkNew<vtkGeoMipMapTerrain> built;
   built->Terrain = std::move(terrain);
+  built->CacheReport = cacheReport;
   built->Built.reset(new Signature(Signature::Of(image, heights, blockSize)));
   built->BuildTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -135,5 +186,11 @@ void vtkGeoMipMapTerrain::PrintSelf(ostream& os, vtkIndent indent)
     os << indent << "HeightsShared: " << (this->Terrain->hf.external != nullptr) << "\n";
   }
   os << indent << "BuildTime: " << this->BuildTime << "\n";
+  os << indent << "TableCache: "
+     << (!this->CacheReport.used ? "not used"
+           : this->CacheReport.hit ? "read from " + this->CacheReport.path
+           : this->CacheReport.written ? "built and saved to " + this->CacheReport.path
+                                       : "built, not saved")
+     << "\n";
   os << indent << "MemoryBytes: " << this->GetMemoryBytes() << "\n";
 }

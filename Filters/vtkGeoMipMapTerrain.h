@@ -12,6 +12,12 @@
  * one image build the tables once, and a second mapper rendering the same image in
  * another window builds nothing.
  *
+ * The error tables are the one pass over every sample a terrain needs before its first
+ * frame (seconds at 16385^2). With a table cache (TableCacheOptions(), on by default) they
+ * are saved to a file keyed by the heights' content hash and the block size, and read back
+ * by the next open of the same DEM, in this process or another; a file that fails any
+ * check (corrupt, stale, other version) is rebuilt and replaced, never trusted.
+ *
  * Float heights are shared with the image's array (no second copy of a large DEM) when
  * they are one component with nothing to sanitise; other types are converted to a float
  * copy for the engine (the mapper still uploads 16-bit heights as they are).
@@ -47,8 +53,27 @@ public:
    * during a build. Returns null and sets `error` when the image or block size cannot be
    * used.
    */
-  static vtkGeoMipMapTerrain* Get(
-    vtkImageData* image, int blockSize, vtkAlgorithm* progress, std::string& error);
+  static vtkGeoMipMapTerrain* Get(vtkImageData* image, int blockSize, vtkAlgorithm* progress,
+    std::string& error, const gmm::TableCacheOptions& cache = gmm::TableCacheOptions());
+
+  /**
+   * The table cache settings for a consumer: off when `enabled` is false, else in
+   * `directory`, or when that is null or empty in DefaultTableCacheDirectory().
+   */
+  static gmm::TableCacheOptions TableCacheOptions(bool enabled, const char* directory);
+
+  /**
+   * The default cache location, the one rule: $GEOMIPMAP_CACHE_DIR when set (set to ""
+   * or "off" it turns the cache off), else $XDG_CACHE_HOME/geomipmap, else
+   * $HOME/.cache/geomipmap; "" (off) when none is set.
+   */
+  static std::string DefaultTableCacheDirectory();
+
+  /**
+   * What the table cache did when this terrain was built: whether the tables were read
+   * from a file, saved to one, and why a file was not used or not written.
+   */
+  const gmm::TableCacheReport& GetTableCacheReport() const { return this->CacheReport; }
 
   /**
    * Key of the cache in the image's information.
@@ -85,6 +110,7 @@ private:
   struct Signature;
   std::unique_ptr<Signature> Built;
   double BuildTime = 0.0;
+  gmm::TableCacheReport CacheReport;
 };
 
 #endif

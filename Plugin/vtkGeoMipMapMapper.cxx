@@ -109,6 +109,7 @@ vtkGeoMipMapMapper::vtkGeoMipMapMapper()
 vtkGeoMipMapMapper::~vtkGeoMipMapMapper()
 {
   this->ReleaseWindowResources();
+  this->SetTableCacheDirectory(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -233,7 +234,8 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     }
   }
   std::string err;
-  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err);
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err,
+    vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory));
   if (!terrain)
   {
     in.Terrain = nullptr;
@@ -246,6 +248,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     in.Terrain = terrain;
     in.Engine.setTerrain(terrain->GetTerrain());
     this->LastTerrainBuildTime = terrain->GetBuildTime();
+    this->LastTablesFromCache = terrain->GetTableCacheReport().hit;
     this->IndicesDirty = true;
   }
   in.Engine.setHeightScale(this->HeightScale);
@@ -783,6 +786,9 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
+  os << indent << "TableCache: " << this->TableCache << "\n";
+  os << indent << "TableCacheDirectory: "
+     << (this->TableCacheDirectory ? this->TableCacheDirectory : "(default)") << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";

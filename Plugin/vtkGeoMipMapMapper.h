@@ -103,6 +103,23 @@ public:
 
   ///@{
   /**
+   * Error table cache (see vtkGeoMipMapTerrain), on by default: the tables of a DEM of
+   * 2^20 samples or more are saved to a file keyed by the heights' content hash and the
+   * block size, and the next open of the same DEM reads them instead of building them.
+   * TableCacheDirectory: where; null or empty (default) uses
+   * vtkGeoMipMapTerrain::DefaultTableCacheDirectory() ($GEOMIPMAP_CACHE_DIR,
+   * $XDG_CACHE_HOME/geomipmap or ~/.cache/geomipmap). A location that cannot be written
+   * gives a warning; the tables are built as without a cache.
+   */
+  vtkSetMacro(TableCache, bool);
+  vtkGetMacro(TableCache, bool);
+  vtkBooleanMacro(TableCache, bool);
+  vtkSetStringMacro(TableCacheDirectory);
+  vtkGetStringMacro(TableCacheDirectory);
+  ///@}
+
+  ///@{
+  /**
    * Vertical exaggeration: the surface is at origin z + HeightScale * h. Finite and > 0,
    * else refused with an error. Default 1. Culling, normals and the certified bound all
    * see the scaled surface; changing it per frame rebuilds nothing (errors scale
@@ -156,12 +173,14 @@ public:
   /**
    * Instrumentation: how many times the heights (and colouring arrays) were uploaded to
    * textures, and the triangle index buffer to OpenGL; the time the last height upload and
-   * the last terrain build (tables) took, in seconds.
+   * the last terrain build (tables) took, in seconds, and whether that build read the
+   * tables from the table cache.
    */
   vtkGetMacro(NumberOfHeightUploads, int);
   vtkGetMacro(NumberOfIndexUploads, int);
   vtkGetMacro(LastHeightUploadTime, double);
   vtkGetMacro(LastTerrainBuildTime, double);
+  vtkGetMacro(LastTablesFromCache, bool);
   ///@}
 
   /**
@@ -247,6 +266,8 @@ protected:
 
   double PixelError = 1.0;
   int BlockSize = 64;
+  bool TableCache = true;
+  char* TableCacheDirectory = nullptr;
   double HeightScale = 1.0;
   vtkTypeInt64 MemoryLimit = 0;
   int MaximumTileSize = 0;
@@ -256,6 +277,7 @@ protected:
   double LastIndexUploadTime = 0.0;
   double LastHeightUploadTime = 0.0;
   double LastTerrainBuildTime = 0.0;
+  bool LastTablesFromCache = false;
   bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
   vtkMTimeType IndicesOnlyMTime = 0;
   bool IndicesDirty = true;

@@ -9,7 +9,9 @@ height type gives an honest bytes-per-sample figure, input image included.
 
 Steps, each timed: generate the DEM (vtkGeoMipMapFractalSource; int16 = the same heights
 rounded, converted in row bands so no second float copy is held), first frame (the
-terrain's tables, the height upload and the first LOD and draw), then an orbit of
+terrain's tables (read from the table cache on a second run, see tables_from_cache; set
+GEOMIPMAP_CACHE_DIR=off to build them every time), the height upload and the first LOD and
+draw), then an orbit of
 --frames frames at tau = 1, 1280 x 720 (median frame time, Render + glFinish). Prints one
 JSON object; frame_cpu_ms is the process's CPU time per frame (all threads, llvmpipe's
 included), which other processes' load does not inflate as it does wall time. Works with the earlier, vertex-buffer mapper too (absent statistics are
@@ -114,7 +116,8 @@ def main(argv):
     out["first_frame_s"] = time.perf_counter() - t
     for key, name in (("terrain_build_s", "GetLastTerrainBuildTime"),
                       ("height_upload_s", "GetLastHeightUploadTime"),
-                      ("gpu_bytes", "GetGPUMemoryBytes")):
+                      ("gpu_bytes", "GetGPUMemoryBytes"),
+                      ("tables_from_cache", "GetLastTablesFromCache")):
         out[key] = getattr(mapper, name)() if hasattr(mapper, name) else None
     out["rss_after_first_frame_mb"] = rss_mb()
     times, cpu, tris = [], [], []
