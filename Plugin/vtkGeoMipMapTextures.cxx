@@ -7,16 +7,20 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "HalfFloat.h"   // gmm::halfOf
 #include "Heightfield.h" // gmm::kMaxHeight
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 namespace
 {
+
 
 struct GLFormat
 {
@@ -34,7 +38,7 @@ GLFormat GLFormatOf(vtkGeoMipMapSampleTexture::Format f)
     case vtkGeoMipMapSampleTexture::RGBA8:
       return { GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE };
     case vtkGeoMipMapSampleTexture::Slopes16F:
-      return { GL_RG16F, GL_RG, GL_FLOAT }; // uploaded as floats, stored as halves
+      return { GL_RG16F, GL_RG, GL_HALF_FLOAT }; // converted by UploadSlopes, copied by GL
     default:
       return { GL_R32F, GL_RED, GL_FLOAT };
   }
@@ -204,20 +208,37 @@ std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win, 
       return (static_cast<double>(z[k]) - z[a]) / step;
     return 0.0;
   };
+  const unsigned workers = std::max(1u, std::thread::hardware_concurrency());
   std::string err = this->UploadTiles(win, Slopes16F, layout,
     [&](int i0, int j0, int w, int h, const void*& pixels, int& rowLength,
       std::vector<unsigned char>& scratch) {
-      scratch.resize(static_cast<size_t>(w) * h * 2 * sizeof(float));
-      float* out = reinterpret_cast<float*>(scratch.data());
-      for (int j = j0; j < j0 + h; ++j)
-      {
-        for (int i = i0; i < i0 + w; ++i)
+      scratch.resize(static_cast<size_t>(w) * h * 2 * sizeof(uint16_t));
+      uint16_t* out = reinterpret_cast<uint16_t*>(scratch.data());
+      // Halves made here, on all cores: Mesa converts a GL_FLOAT upload to RG16F texel by
+      // texel on one thread. The band's rows are split over the cores (a band is a few MB:
+      // each share is worth a thread).
+      auto rows = [&](int first, int last) {
+        for (int j = first; j < last; ++j)
         {
-          const size_t k = static_cast<size_t>(j) * nx + i;
-          float* t = out + 2 * ((static_cast<size_t>(j - j0)) * w + (i - i0));
-          t[0] = static_cast<float>(slope(k, i > 0, k - 1, i + 1 < nx, k + 1, dx));
-          t[1] = static_cast<float>(slope(k, j > 0, k - nx, j + 1 < ny, k + nx, dy));
+          for (int i = i0; i < i0 + w; ++i)
+          {
+            const size_t k = static_cast<size_t>(j) * nx + i;
+            uint16_t* t = out + 2 * ((static_cast<size_t>(j - j0)) * w + (i - i0));
+            t[0] = gmm::halfOf(static_cast<float>(slope(k, i > 0, k - 1, i + 1 < nx, k + 1, dx)));
+            t[1] = gmm::halfOf(static_cast<float>(slope(k, j > 0, k - nx, j + 1 < ny, k + nx, dy)));
+          }
         }
+      };
+      const int parts = static_cast<int>(std::min<unsigned>(workers, static_cast<unsigned>(h)));
+      std::vector<std::thread> pool;
+      for (int p = 1; p < parts; ++p)
+      {
+        pool.emplace_back(rows, j0 + h * p / parts, j0 + h * (p + 1) / parts);
+      }
+      rows(j0, j0 + h / parts);
+      for (std::thread& t : pool)
+      {
+        t.join();
       }
       pixels = scratch.data();
       rowLength = w;
