@@ -122,6 +122,5 @@ install(FILES "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/geomipmap/__init__.py"
   DESTINATION "${GEOMIPMAP_PYTHON_DESTINATION}/geomipmap" COMPONENT python)
 # Tests (Testing/Python) run: PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT} /usr/bin/python3 ...
 
-# geomipmap-fly command, its Python package and tests (Plugin/Python).
-include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapFly.cmake")
-include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapBench.cmake")
+# The geomipmap-fly and geomipmap-bench commands and their package geomipmap_apps.
+include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapApps.cmake")

@@ -14,7 +14,6 @@ import os
 import shutil
 import subprocess
 import sys
-import types
 
 if len(sys.argv) != 3:
     sys.exit("usage: TestBenchQuick.py GEOMIPMAP_BENCH SCRATCH_DIR")
@@ -55,15 +54,12 @@ for r in rows:
 
 # The coarse mesh, through the bench's own pieces (same terrain, flight and camera).
 import geomipmap  # noqa: E402
-from geomipmap_bench import meshes  # noqa: E402
-from geomipmap_fly import paths  # noqa: E402
-from geomipmap_fly.errors import VTKMessages  # noqa: E402
-from geomipmap_fly.terrain import load_terrain  # noqa: E402
+from geomipmap_apps import paths  # noqa: E402
+from geomipmap_apps.bench import meshes  # noqa: E402
+from geomipmap_apps.terrain import load_terrain  # noqa: E402
 from vtkmodules.vtkRenderingCore import vtkRenderer  # noqa: E402
 
-args = types.SimpleNamespace(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
-                             synthetic_size=513, seed=1)
-image, heights = load_terrain(args, VTKMessages())
+image, heights = load_terrain(synthetic_size=513, seed=1)
 flight = paths.Flight(paths.orbit_path(heights, None), heights, 3, 15.0)
 coarse = meshes.grid_mesh(heights, 16)
 ren = vtkRenderer()

@@ -18,7 +18,7 @@ import os
 import geomipmap  # PYTHONPATH from CTest
 import numpy as np
 from geographiclib.geodesic import Geodesic
-from geomipmap_fly import paths, terrain as fly_terrain
+from geomipmap_apps import paths, terrain as fly_terrain
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from flytestutil import check, check_measured, measured_flight, png_stats, read_csv, run, setup

@@ -12,8 +12,8 @@ import sys
 
 import numpy as np
 
-from geomipmap_fly.errors import FlyError
-from geomipmap_fly.paths import read_waypoints
+from geomipmap_apps.errors import AppError as FlyError
+from geomipmap_apps.paths import read_waypoints
 from waypointcases import BAD, GOOD, make_terrain, write
 
 scratch = sys.argv[1]

@@ -1,6 +1,6 @@
 """Seeded mutation fuzzing of geomipmap-fly's waypoint parser, in-process (no rendering).
 
-Every input goes straight to geomipmap_fly.paths.parse_waypoints, the parser behind
+Every input goes straight to geomipmap_apps.paths.parse_waypoints, the parser behind
 read_waypoints (which only adds reading the file: no disk I/O per input here). The outcome
 must be a valid Path (at least 2 waypoints, all finite, all on the terrain) or a FlyError
 whose text is one printable line naming the file; any other exception fails the test, and
@@ -28,8 +28,8 @@ import traceback
 
 import numpy as np
 
-from geomipmap_fly.errors import FlyError
-from geomipmap_fly.paths import Path, parse_waypoints
+from geomipmap_apps.errors import AppError as FlyError
+from geomipmap_apps.paths import Path, parse_waypoints
 from waypointcases import BAD, GOOD, make_terrain
 
 scratch = sys.argv[1]

@@ -1,9 +1,10 @@
-"""Terrain input for geomipmap-fly: load a DEM (or the synthetic terrain), sample it.
+"""Terrain input for the geomipmap tools: load a DEM (or the synthetic terrain), sample it.
 
-Why a separate module: the flight path needs ground heights under the camera (terrain
-following) and a geographic -> local-metre conversion that must agree exactly with what
-vtkGeoMipMapTerrainReader did to the raster; both depend only on the image, not on
-rendering.
+Why a separate module: every tool opens its terrain the same way (the reader or the
+fractal source, with one-line errors), and the flight path needs ground heights under the
+camera (terrain following) and a geographic -> local-metre conversion that must agree
+exactly with what vtkGeoMipMapTerrainReader did to the raster; both depend only on the
+image, not on rendering.
 """
 
 import os
@@ -11,33 +12,39 @@ import os
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from .errors import FlyError, one_line
+from .errors import AppError, VTKMessages
 
 
-def load_terrain(args, messages):
-    """Run the reader (--dem) or the fractal source; return the vtkImageData.
+def load_terrain(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
+                 synthetic_size=1025, seed=1, messages=None):
+    """Run the reader on `dem`, or the fractal source when dem is None; return
+    (vtkImageData, Heights).
 
-    Raises FlyError with one line for a missing / unreadable file or an empty image.
+    spacing: metres between samples for images without georeference (synthetic terrain:
+    default 30). synthetic_size, seed: the fractal source's samples per side and seed.
+    messages: the VTKMessages that capture VTK's errors (a new one when None).
+    Raises AppError with one line for a missing / unreadable file or an empty image.
     """
     import geomipmap  # noqa: deferred so that --help works without the compiled package
 
-    if args.dem:
-        if not os.path.isfile(args.dem):
-            raise FlyError(f"DEM file not found: {args.dem}")
-        if not os.access(args.dem, os.R_OK):
-            raise FlyError(f"DEM file not readable: {args.dem}")
+    messages = messages or VTKMessages()
+    if dem:
+        if not os.path.isfile(dem):
+            raise AppError(f"DEM file not found: {dem}")
+        if not os.access(dem, os.R_OK):
+            raise AppError(f"DEM file not readable: {dem}")
         algo = geomipmap.vtkGeoMipMapTerrainReader()
-        algo.SetFileName(args.dem)
-        algo.SetHeightScale(args.height_scale)
-        if args.spacing is not None:
-            algo.SetSpacing(args.spacing)
-        algo.SetTerrainRGB(1 if args.terrain_rgb else 0)
-        what = f"cannot read DEM {args.dem}"
+        algo.SetFileName(dem)
+        algo.SetHeightScale(height_scale)
+        if spacing is not None:
+            algo.SetSpacing(spacing)
+        algo.SetTerrainRGB(1 if terrain_rgb else 0)
+        what = f"cannot read DEM {dem}"
     else:
         algo = geomipmap.vtkGeoMipMapFractalSource()
-        algo.SetDimensions(args.synthetic_size, args.synthetic_size)
-        algo.SetSpacing(args.spacing if args.spacing is not None else 30.0)
-        algo.SetSeed(args.seed)
+        algo.SetDimensions(synthetic_size, synthetic_size)
+        algo.SetSpacing(spacing if spacing is not None else 30.0)
+        algo.SetSeed(seed)
         what = "synthetic terrain failed"
     messages.observe(algo)
     ok = algo.GetExecutive().Update()
@@ -45,26 +52,15 @@ def load_terrain(args, messages):
     err = messages.first_error()
     dims = image.GetDimensions() if image is not None else (0, 0, 0)
     if not ok or err or dims[0] < 2 or dims[1] < 2:
-        if err and args.dem and args.dem in err:
-            raise FlyError(err)  # the reader's message names the file already
-        raise FlyError(f"{what}: {err or 'no elevation samples in the output'}")
+        if err and dem and dem in err:
+            raise AppError(err)  # the reader's message names the file already
+        raise AppError(f"{what}: {err or 'no elevation samples in the output'}")
     image = image.NewInstance()
     image.ShallowCopy(algo.GetOutput())
     heights = Heights(image)
     if not np.isfinite(heights.z).any():
-        raise FlyError(f"{what}: every sample is nodata")
+        raise AppError(f"{what}: every sample is nodata")
     return image, heights
-
-
-def field_string(image, name):
-    """A string field-data array's first value, or None."""
-    arr = image.GetFieldData().GetAbstractArray(name)
-    if arr is None or arr.GetNumberOfValues() == 0:
-        return None
-    try:
-        return one_line(arr.GetValue(0))
-    except (AttributeError, TypeError):
-        return None
 
 
 class Heights:
@@ -79,7 +75,7 @@ class Heights:
         nx, ny, _ = image.GetDimensions()
         scalars = image.GetPointData().GetScalars()
         if scalars is None:
-            raise FlyError("terrain image has no elevation scalars")
+            raise AppError("terrain image has no elevation scalars")
         self.z = vtk_to_numpy(scalars).astype(np.float64).reshape(ny, nx)
         self.nx, self.ny = nx, ny
         self.ox, self.oy, _ = image.GetOrigin()
@@ -132,7 +128,7 @@ class GeoFrame:
         fd = image.GetFieldData()
         arr = fd.GetArray("GeographicOrigin")
         if arr is None or arr.GetNumberOfValues() < 2 or fd.GetArray("CentralMeridian") is None:
-            raise FlyError("waypoints are geographic (lon/lat) but the DEM has no geographic "
+            raise AppError("waypoints are geographic (lon/lat) but the DEM has no geographic "
                            "origin (not a lon/lat raster); give local x,y in metres")
         import geomipmap
 

@@ -10,14 +10,13 @@ Memory: a method whose estimated footprint exceeds the budget is skipped, with t
 import os
 import resource
 import time
-import types
 
 import numpy as np
-from geomipmap_fly import paths
-from geomipmap_fly.errors import FlyError, VTKMessages
-from geomipmap_fly.scene import Scene
-from geomipmap_fly.terrain import load_terrain
 
+from .. import paths
+from ..errors import AppError, VTKMessages
+from ..scene import Scene
+from ..terrain import load_terrain
 from . import meshes
 from .measure import Bench
 
@@ -61,14 +60,12 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
             skip(m, why)
         return
     messages = VTKMessages()
-    ns = types.SimpleNamespace(dem=path, height_scale=1.0, spacing=None, terrain_rgb=False,
-                               synthetic_size=n or 0, seed=1)
-    if path:
-        vars(ns).update(KNOWN_FILES.get(os.path.basename(path), {}))
+    settings = KNOWN_FILES.get(os.path.basename(path), {}) if path else {}
     t0 = time.perf_counter()
     try:
-        image, heights = load_terrain(ns, messages)
-    except FlyError as e:
+        image, heights = load_terrain(dem=path, synthetic_size=n or 0, messages=messages,
+                                      **settings)
+    except AppError as e:
         skip("all", f"cannot load: {e}")
         return
     samples = heights.nx * heights.ny
@@ -79,10 +76,8 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
         for m in methods:
             skip(m, "ours does not run (memory budget or --methods): no triangle counts")
         return
-    sargs = types.SimpleNamespace(block_size=64, tau=args.tau[0], color="elevation",
-                                  no_lighting=False, size=args.size, interactive=False,
-                                  view_angle=50.0)
-    scene = Scene(image, heights, sargs, messages)
+    scene = Scene(image, heights, block_size=64, tau=args.tau[0], size=args.size,
+                  view_angle=50.0, title="geomipmap-bench", messages=messages)
     route = (paths.line_path if args.path == "line" else paths.orbit_path)(heights, None)
     bench = Bench(scene, image, heights, paths.Flight(route, heights, args.frames, 15.0),
                   args.size)

@@ -25,7 +25,7 @@ DEPTH_QUANTUM = 2.0 ** -24
 
 
 class Bench:
-    """One window and renderer (geomipmap_fly's Scene); one actor shown at a time."""
+    """One window and renderer (geomipmap_apps.scene.Scene); one actor shown at a time."""
 
     def __init__(self, scene, image, heights, flight, size):
         import geomipmap

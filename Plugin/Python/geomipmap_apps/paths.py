@@ -16,7 +16,7 @@ import os
 
 import numpy as np
 
-from .errors import FlyError
+from .errors import AppError
 from .terrain import GeoFrame
 
 GEO_KEYS = ("lon", "lat")
@@ -75,17 +75,17 @@ def read_waypoints(filename, image, heights, clearance):
     See parse_waypoints for the format; this only reads the file's bytes.
     """
     if not os.path.isfile(filename):
-        raise FlyError(f"waypoint file not found: {filename}")
+        raise AppError(f"waypoint file not found: {filename}")
     try:
         with open(filename, "rb") as f:
             data = f.read()
     except OSError as e:
-        raise FlyError(f"cannot read waypoint file {filename}: {e.strerror}") from None
+        raise AppError(f"cannot read waypoint file {filename}: {e.strerror}") from None
     return parse_waypoints(data, filename, image, heights, clearance)
 
 
 def parse_waypoints(data, filename, image, heights, clearance):
-    """The bytes of a waypoint file -> Path in local metres; FlyError if malformed.
+    """The bytes of a waypoint file -> Path in local metres; AppError if malformed.
 
     filename names the file in messages and picks the format (.json: JSON, else CSV).
     Text is UTF-8, with or without a byte order mark. Columns / keys: x, y (local metres,
@@ -104,22 +104,22 @@ def parse_waypoints(data, filename, image, heights, clearance):
     else:
         rows = _csv_rows(text, filename)
     if len(rows) < 2:
-        raise FlyError(f"{filename}: need at least 2 waypoints, found {len(rows)}")
+        raise AppError(f"{filename}: need at least 2 waypoints, found {len(rows)}")
     keys = set(rows[0][1])
     if all(k in keys for k in GEO_KEYS):
         pos = GEO_KEYS
         try:
             frame = GeoFrame(image, heights)
-        except FlyError as e:
-            raise FlyError(f"{filename}: {e}") from None
+        except AppError as e:
+            raise AppError(f"{filename}: {e}") from None
     elif all(k in keys for k in LOCAL_KEYS):
         pos, frame = LOCAL_KEYS, None
     else:
-        raise FlyError(f"{filename}: need columns x,y (metres) or lon,lat (degrees); "
+        raise AppError(f"{filename}: need columns x,y (metres) or lon,lat (degrees); "
                        f"found {_shown(','.join(sorted(keys)), 80) if keys else 'none'}")
     hkey = next((k for k in HEIGHT_KEYS if k in keys), None)
     if hkey is None and clearance is None:
-        raise FlyError(f"{filename}: need a height column agl (above ground) or z/alt "
+        raise AppError(f"{filename}: need a height column agl (above ground) or z/alt "
                        "(absolute metres), or give --clearance")
     xy, hs = [], []
     for where, row in rows:
@@ -128,7 +128,7 @@ def parse_waypoints(data, filename, image, heights, clearance):
         x, y = frame.to_local(a, b) if frame else (a, b)
         if not heights.contains(x, y):
             at = f"lon {a:g} lat {b:g}" if frame else f"x {a:g} y {b:g}"
-            raise FlyError(f"{filename}: {where} at {at} is outside the terrain")
+            raise AppError(f"{filename}: {where} at {at} is outside the terrain")
         xy.append((x, y))
         hs.append(h)
     if clearance is not None:
@@ -142,7 +142,7 @@ def _decode(data, filename):
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as e:
         line = data.count(b"\n", 0, e.start) + 1
-        raise FlyError(f"cannot read waypoint file {filename}: line {line} is not UTF-8 "
+        raise AppError(f"cannot read waypoint file {filename}: line {line} is not UTF-8 "
                        f"text (byte 0x{data[e.start]:02x})") from None
 
 
@@ -161,13 +161,13 @@ def _csv_rows(text, filename):
                 _unique([(h, None) for h in header], f"{filename}: line {line}: column")
                 continue
             if len(fields) != len(header):
-                raise FlyError(f"{filename}: line {line} has {len(fields)} fields, "
+                raise AppError(f"{filename}: line {line} has {len(fields)} fields, "
                                f"the header has {len(header)}")
             where = f"waypoint {len(rows) + 1} (line {line})"
             rows.append((where, {h: f.strip() for h, f in zip(header, fields) if h}))
     except csv.Error as e:
         line = kept[min(used, len(kept) - 1)][0]
-        raise FlyError(f"cannot read waypoint file {filename}: line {line}: {e}") from None
+        raise AppError(f"cannot read waypoint file {filename}: line {line}: {e}") from None
     return rows
 
 
@@ -182,30 +182,30 @@ def _json_rows(text, filename):
         # OverflowError, and Python's 4300-digit limit on int() never applies.
         data = json.loads(text, object_pairs_hook=_Object, parse_int=float)
     except json.JSONDecodeError as e:
-        raise FlyError(f"cannot read waypoint file {filename}: {e}") from None
+        raise AppError(f"cannot read waypoint file {filename}: {e}") from None
     except RecursionError:
-        raise FlyError(f"cannot read waypoint file {filename}: JSON nested too deeply") from None
+        raise AppError(f"cannot read waypoint file {filename}: JSON nested too deeply") from None
     if isinstance(data, _Object):
         data = dict(data).get("waypoints")
     if not isinstance(data, list):
-        raise FlyError(f"{filename}: expected a list of waypoint objects "
+        raise AppError(f"{filename}: expected a list of waypoint objects "
                        "(or {\"waypoints\": [...]})")
     rows = []
     for n, item in enumerate(data, start=1):
         where = f"waypoint {n}"
         if not isinstance(item, _Object):
-            raise FlyError(f"{filename}: {where} is not an object: {_shown(item)}")
+            raise AppError(f"{filename}: {where} is not an object: {_shown(item)}")
         pairs = [(str(k).strip().lower(), v) for k, v in item]
         rows.append((where, _unique(pairs, f"{filename}: {where}: key")))
     return rows
 
 
 def _unique(pairs, context):
-    """dict(pairs) without empty names; FlyError if a name appears twice."""
+    """dict(pairs) without empty names; AppError if a name appears twice."""
     out = {}
     for name, value in pairs:
         if name in out:
-            raise FlyError(f"{context} {_shown(name)} appears twice")
+            raise AppError(f"{context} {_shown(name)} appears twice")
         if name:
             out[name] = value
     return out
@@ -214,7 +214,7 @@ def _unique(pairs, context):
 def _number(row, key, context):
     """row[key] as a finite float: a JSON number or a numeric string (not true/false)."""
     if key not in row:
-        raise FlyError(f"{context} has no {key}")
+        raise AppError(f"{context} has no {key}")
     value = row[key]
     try:
         if isinstance(value, str):
@@ -224,9 +224,9 @@ def _number(row, key, context):
         else:  # true/false, null, a list or an object
             raise ValueError
     except ValueError:
-        raise FlyError(f"{context}: {key} is not a number: {_shown(value)}") from None
+        raise AppError(f"{context}: {key} is not a number: {_shown(value)}") from None
     if not math.isfinite(v):
-        raise FlyError(f"{context}: {key} is non-finite or out of range: {_shown(value)}")
+        raise AppError(f"{context}: {key} is non-finite or out of range: {_shown(value)}")
     return v
 
 
@@ -252,7 +252,7 @@ class Flight:
         keep = np.concatenate([[True], seg > 1e-9])
         xy, hgt = xy[keep], path.height[keep]
         if len(xy) < 2:
-            raise FlyError("the flight path has zero length")
+            raise AppError("the flight path has zero length")
         s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))])
         self.length = float(s[-1])
         # Dense profile at 1/4 sample spacing: frame-count independent heights.
