@@ -1,17 +1,15 @@
 # The command-line tools (geomipmap-fly, geomipmap-bench) and their one Python package,
-# geomipmap_apps (Plugin/Python/geomipmap_apps): shared terrain loading, scene set-up and
-# errors at its top level, one subpackage per tool. A tool is a subpackage with a cli.main
+# geomipmap_apps (Plugin/Python/geomipmap_apps): shared terrain loading, scene set-up,
+# errors and command-line handling at its top level, one subpackage per tool; the camera
+# paths are the geomipmap package's (geomipmap.flight, CMake/geomipmapVTK.cmake). A tool is a subpackage with a cli.main
 # and a launcher configured from geomipmap-app.in. Included at the end of
 # CMake/geomipmapVTK.cmake (needs GEOMIPMAP_PYTHON_DESTINATION and
 # GEOMIPMAP_PYTHON_PACKAGE_PARENT from there). Tests: Testing/Python, Testing/Benchmarks.
 set(_apps_dir "${CMAKE_CURRENT_LIST_DIR}")
-# Relative to Plugin/Python; copied into the build tree's package folder (next to the
-# geomipmap package) and installed with the same layout under the prefix.
-set(_apps_sources
+geomipmap_add_python_files(
   geomipmap_apps/__init__.py
   geomipmap_apps/command.py
   geomipmap_apps/errors.py
-  geomipmap_apps/paths.py
   geomipmap_apps/scene.py
   geomipmap_apps/terrain.py
   geomipmap_apps/fly/__init__.py
@@ -25,13 +23,6 @@ set(_apps_sources
   geomipmap_apps/bench/meshes.py
   geomipmap_apps/bench/report.py
   geomipmap_apps/bench/run.py)
-foreach(_f IN LISTS _apps_sources)
-  # COPYONLY re-copies on the next build when a source changes (CMake re-runs).
-  configure_file("${_apps_dir}/${_f}" "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/${_f}" COPYONLY)
-  get_filename_component(_sub "${_f}" DIRECTORY)
-  install(FILES "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/${_f}"
-    DESTINATION "${GEOMIPMAP_PYTHON_DESTINATION}/${_sub}" COMPONENT python)
-endforeach()
 # Build trees configured before the tools shared one package hold the old top-level
 # packages; a stale copy would let an import of them pass in the tests.
 file(REMOVE_RECURSE "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/geomipmap_fly"

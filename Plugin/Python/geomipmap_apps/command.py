@@ -47,14 +47,22 @@ def window_size(text):
     return (w, h)
 
 
+def _bad_input():
+    """The exceptions that mean bad input: AppError, and the flight API's FlightError once
+    geomipmap.flight is loaded (the tools import it late, so that --help works without
+    the compiled package)."""
+    flight = sys.modules.get("geomipmap.flight")
+    return (AppError, flight.FlightError) if flight else (AppError,)
+
+
 def run(prog, body):
     """Call body() (the whole tool after its imports) and return the exit status: body's,
-    or 2 after one line on stderr for AppError (bad input), a missing geomipmap package
-    or memory, 130 when interrupted, 1 for anything else (GEOMIPMAP_DEBUG=1 re-raises it
-    for a traceback)."""
+    or 2 after one line on stderr for bad input (AppError, geomipmap.flight.FlightError),
+    a missing geomipmap package or memory, 130 when interrupted, 1 for anything else
+    (GEOMIPMAP_DEBUG=1 re-raises it for a traceback)."""
     try:
         return body()
-    except AppError as e:
+    except _bad_input() as e:
         print(f"{prog}: error: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

@@ -42,18 +42,17 @@ class Scene:
     image, heights: the terrain (terrain.load_terrain). block_size, tau: the mapper's
     block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
     "texture:FILE.png" (draped over the extent). size: the window's (width, height).
-    on_screen: a window on the display instead of off-screen rendering. view_angle:
-    vertical field of view in degrees. title: the window's name. messages: VTKMessages for
-    errors (texture reading).
+    on_screen: a window on the display instead of off-screen rendering. title: the
+    window's name. messages: VTKMessages for errors (texture reading). The camera is
+    the renderer's active one; a geomipmap.flight path drives it (apply(renderer, frame)).
     """
 
     def __init__(self, image, heights, block_size=64, tau=1.0, color="elevation",
-                 lighting=True, size=(1280, 720), on_screen=False, view_angle=50.0,
-                 title="geomipmap", messages=None):
+                 lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
+                 messages=None):
         import geomipmap
 
         self.messages = messages or VTKMessages()
-        self.view_angle = view_angle
         self.mapper = geomipmap.vtkGeoMipMapMapper()
         self.mapper.SetInputData(image)
         self.mapper.SetBlockSize(block_size)
@@ -127,14 +126,6 @@ class Scene:
         sun.SetFocalPoint(0.0, 0.0, 0.0)
         sun.SetIntensity(1.0)
         self.renderer.AddLight(sun)
-
-    def set_camera(self, position, focal):
-        cam = self.renderer.GetActiveCamera()
-        cam.SetPosition(*position)
-        cam.SetFocalPoint(*focal)
-        cam.SetViewUp(0.0, 0.0, 1.0)
-        cam.SetViewAngle(self.view_angle)
-        self.renderer.ResetCameraClippingRange()
 
     def render(self):
         """Render one frame; return (render_ms, lod_ms, stats dict)."""

@@ -47,7 +47,7 @@ class Bench:
     def camera(self, frame):
         """Frame's camera; one clipping range for every method (from the terrain's bounds),
         so that depth buffers are comparable."""
-        self.scene.set_camera(self.flight.positions[frame], self.flight.focal[frame])
+        self.flight.apply(self.scene.renderer.GetActiveCamera(), frame)
         self.scene.renderer.ResetCameraClippingRange(*self.bounds)
 
     def show(self, actor):

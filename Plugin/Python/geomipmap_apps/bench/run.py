@@ -13,7 +13,6 @@ import time
 
 import numpy as np
 
-from .. import paths
 from ..errors import AppError, VTKMessages
 from ..scene import Scene
 from ..terrain import load_terrain
@@ -46,6 +45,8 @@ def _gb(method, samples):
 
 
 def run_dem(label, path, n, args, methods, budget_gb, out):
+    from geomipmap import flight
+
     def skip(m, why):
         out.skip(label, m, why)
         print(f"[{label}] {m}: skipped: {why}", flush=True)
@@ -77,10 +78,10 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
             skip(m, "ours does not run (memory budget or --methods): no triangle counts")
         return
     scene = Scene(image, heights, block_size=64, tau=args.tau[0], size=args.size,
-                  view_angle=50.0, title="geomipmap-bench", messages=messages)
-    route = (paths.line_path if args.path == "line" else paths.orbit_path)(heights, None)
-    bench = Bench(scene, image, heights, paths.Flight(route, heights, args.frames, 15.0),
-                  args.size)
+                  title="geomipmap-bench", messages=messages)
+    route = (flight.Line if args.path == "line" else flight.Orbit)(
+        heights, frames=args.frames, pitch=15.0, view_angle=50.0)
+    bench = Bench(scene, image, heights, route, args.size)
     configs = _build(label, args, methods, over, budget_gb, bench, heights, image, skip, out)
     _fly(label, args, configs, bench, heights, out)
     out.note(label, f"peak RSS {_rss_gb():.1f} GB")

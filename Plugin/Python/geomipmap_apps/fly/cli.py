@@ -134,7 +134,9 @@ def check(args):
 
 def fly(args):
     """Everything after option parsing; returns the summary text."""
-    from .. import paths, scene, terrain
+    from geomipmap import flight
+
+    from .. import scene, terrain
     from . import report
 
     messages = VTKMessages()
@@ -142,17 +144,17 @@ def fly(args):
         dem=args.dem, height_scale=args.height_scale, spacing=args.spacing,
         terrain_rgb=args.terrain_rgb, synthetic_size=args.synthetic_size, seed=args.seed,
         messages=messages)
+    how = dict(clearance=args.clearance, frames=args.frames, pitch=args.pitch,
+               view_angle=args.view_angle)
     if args.waypoints:
-        path = paths.read_waypoints(args.waypoints, image, heights, args.clearance)
+        path = flight.Waypoints.from_file(args.waypoints, heights, **how)
     elif args.path == "line":
-        path = paths.line_path(heights, args.clearance)
+        path = flight.Line(heights, **how)
     else:
-        path = paths.orbit_path(heights, args.clearance)
-    flight = paths.Flight(path, heights, args.frames, args.pitch)
+        path = flight.Orbit(heights, **how)
     view = scene.Scene(image, heights, block_size=args.block_size, tau=args.tau,
                        color=args.color, lighting=not args.no_lighting, size=args.size,
-                       on_screen=args.interactive, view_angle=args.view_angle, title=PROG,
-                       messages=messages)
+                       on_screen=args.interactive, title=PROG, messages=messages)
     # Only now, when the input is known good, touch the output folder.
     try:
         os.makedirs(args.out, exist_ok=True)
@@ -166,7 +168,7 @@ def fly(args):
     written = 0
     try:
         for i in range(args.frames):
-            view.set_camera(flight.positions[i], flight.focal[i])
+            path.apply(view.renderer, i)
             stats = view.render()
             if i == 0 and (err := messages.first_error()):
                 raise AppError(f"rendering failed: {err}")
