@@ -12,6 +12,7 @@ geomipmap_add_python_files(
   geomipmap_apps/errors.py
   geomipmap_apps/scene.py
   geomipmap_apps/terrain.py
+  geomipmap_apps/video.py
   geomipmap_apps/fly/__init__.py
   geomipmap_apps/fly/__main__.py
   geomipmap_apps/fly/cli.py

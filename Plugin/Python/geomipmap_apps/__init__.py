@@ -6,8 +6,12 @@
 
 What the tools share lives here, written once: terrain (load a DEM or the synthetic
 terrain with one-line errors), scene (window, LOD mapper, colours, sun, timed frames, PNG
-grabs), errors (AppError, VTK message capture). A new tool is a subpackage with a
-cli.main(argv) and a launcher (Plugin/Python/geomipmapApps.cmake).
+grabs), video (frames into .mp4 / .ogv through ffmpeg or vtkOggTheoraWriter), command
+(argument types, one-line errors, exit statuses), errors (AppError, VTK message capture).
+A new tool is a subpackage with a cli.main(argv) and a launcher
+(Plugin/Python/geomipmapApps.cmake). The camera paths are the product's:
+geomipmap.flight.
 
-The product is the geomipmap package; nothing in it imports this one.
+The product is the geomipmap package; nothing in it imports this one
+(Testing/Python/TestAppsPackage.py).
 """

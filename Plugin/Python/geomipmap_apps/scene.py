@@ -145,7 +145,9 @@ class Scene:
         }
         return stats
 
-    def write_png(self, filename):
+    def capture(self):
+        """Grab the frame rendered last; returns the vtkImageData (RGB, bottom row first).
+        Once a frame: write_png and a video both use this grab."""
         if self.grab is None:
             self.grab = vtkWindowToImageFilter()
             self.grab.SetInput(self.window)
@@ -154,6 +156,11 @@ class Scene:
             self.png = vtkPNGWriter()
             self.png.SetInputConnection(self.grab.GetOutputPort())
         self.grab.Modified()
+        self.grab.Update()
+        return self.grab.GetOutput()
+
+    def write_png(self, filename):
+        """Write the frame captured last (capture()) as PNG."""
         self.png.SetFileName(filename)
         self.png.Write()
 

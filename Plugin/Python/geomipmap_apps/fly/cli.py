@@ -9,7 +9,7 @@ import argparse
 import glob
 import os
 
-from .. import command
+from .. import command, video
 from ..errors import AppError, VTKMessages
 
 PROG = "geomipmap-fly"
@@ -30,11 +30,14 @@ and lines starting with # are ignored.
 
 examples:
   geomipmap-fly                                    # orbit over synthetic terrain
-  geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30
+  geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30 --video tile.mp4
   geomipmap-fly --dem dem.tif --waypoints route.csv --tau 2 --every 10 --size 1920x1080
 
 output: DIR/frame_NNNNN.png, DIR/flight.csv (frame, time_s, lod_ms, render_ms, triangles,
-visible_blocks, culled_blocks, certified_error_px, reused) and a summary on stdout.
+visible_blocks, culled_blocks, certified_error_px, reused), with --video a video of every
+frame at --fps (.mp4: H.264 by ffmpeg, even width and height; .ogv: Ogg Theora by ffmpeg,
+or by VTK's vtkOggTheoraWriter where ffmpeg is missing, whole --fps), and a summary on
+stdout.
 exit status: 0 ok, 2 bad input (one line on stderr), 1 internal error.
 """
 
@@ -103,6 +106,12 @@ def build_parser():
     g.add_argument("--every", type=command.positive(int, 1, strict=False), default=1,
                    help="write every K-th frame as PNG (default 1)")
     g.add_argument("--no-frames", action="store_true", help="write no PNG frames")
+    g.add_argument("--video", metavar="FILE", help="also write the flight as a video, "
+                   "every frame at --fps: FILE.mp4 (H.264, needs ffmpeg) or FILE.ogv "
+                   "(Ogg Theora)")
+    g.add_argument("--video-encoder", choices=video.ENCODERS, default="auto",
+                   help="auto (default): ffmpeg when it is on PATH, else VTK's "
+                   "vtkOggTheoraWriter (.ogv only)")
     return p
 
 
@@ -127,6 +136,8 @@ def check(args):
         raise AppError(f"waypoint file not found: {args.waypoints}")
     if args.dem and not os.path.isfile(args.dem):
         raise AppError(f"DEM file not found: {args.dem}")
+    if args.video:
+        video.check(args.video, args.size, args.fps, args.video_encoder)
     if not os.environ.get("DISPLAY"):
         raise AppError("no X display (DISPLAY is unset): VTK here renders through X; "
                        "run under xvfb-run -a")
@@ -155,34 +166,53 @@ def fly(args):
     view = scene.Scene(image, heights, block_size=args.block_size, tau=args.tau,
                        color=args.color, lighting=not args.no_lighting, size=args.size,
                        on_screen=args.interactive, title=PROG, messages=messages)
-    # Only now, when the input is known good, touch the output folder.
+    # Only now, when the input is known good, touch the output folders.
+    folder = args.out
     try:
-        os.makedirs(args.out, exist_ok=True)
-        for old in glob.glob(os.path.join(args.out, "frame_[0-9][0-9][0-9][0-9][0-9].png")):
+        os.makedirs(folder, exist_ok=True)
+        for old in glob.glob(os.path.join(folder, "frame_[0-9][0-9][0-9][0-9][0-9].png")):
             os.remove(old)  # frames of an earlier flight would be mixed with this one's
+        if args.video:
+            folder = os.path.dirname(os.path.abspath(args.video))
+            os.makedirs(folder, exist_ok=True)
     except OSError as e:
-        raise AppError(f"cannot write to output folder {args.out}: {e.strerror}") from None
+        raise AppError(f"cannot write to output folder {folder}: {e.strerror}") from None
     csv_name = os.path.join(args.out, "flight.csv")
     log = report.FrameLog(csv_name)
-    progress = report.Progress(args.frames)
+    movie = video.VideoWriter(args.video, args.size, args.fps, args.video_encoder) \
+        if args.video else None
+    progress = report.Progress(len(path))
     written = 0
     try:
-        for i in range(args.frames):
+        for i in range(len(path)):
             path.apply(view.renderer, i)
             stats = view.render()
             if i == 0 and (err := messages.first_error()):
                 raise AppError(f"rendering failed: {err}")
             log.add(i, i / args.fps, stats)
-            if not args.no_frames and i % args.every == 0:
+            png = not args.no_frames and i % args.every == 0
+            if png or movie:
+                frame = view.capture()
+            if png:
                 view.write_png(os.path.join(args.out, f"frame_{i:05d}.png"))
                 written += 1
+            if movie:
+                movie.add(frame)
             progress.update(i + 1)
+    except BaseException:
+        if movie:
+            movie.close(quiet=True)  # what was rendered stays playable; the error is told
+        raise
     finally:
         progress.finish()
         log.close()
+    if movie:
+        movie.close()
     where = [f"CSV: {os.path.abspath(csv_name)}"]
     where.append(f"frames: {written} PNG in {os.path.abspath(args.out)}" if written
                  else "frames: none written (--no-frames)")
+    if movie:
+        where.append(movie.describe())
     text = report.summary(log.rows, args.tau, where)
     if args.interactive:
         print(text)
