@@ -177,6 +177,15 @@ expect(flight.FlightError, lambda: flight.Waypoints(heights, [(100, 100, 5), (1e
        ("waypoint 2", "outside the terrain"))
 expect(flight.FlightError, lambda: flight.Waypoints(heights, [(1, 42, 5), (1.1, 42, 5)],
                                                     lonlat=True), ("geographic",))
+expect(flight.FlightError, lambda: flight.Waypoints(heights, [(100, 100), (200, 200)]),
+       ("(x, y, h)",))
+expect(flight.FlightError, lambda: flight.Waypoints(heights, [(100, 100, "high"), (2, 2, 2)]),
+       ("waypoint 1", "numbers"))
+expect(flight.FlightError, lambda: flight.Waypoints(heights, [(100, math.inf, 5), (2, 2, 2)]),
+       ("waypoint 1", "finite"))
+xy = flight.Waypoints(heights, [(100, 100), (2000, 900)], clearance=80.0, frames=3)
+check(np.allclose(xy.positions[[0, -1], :2], [(100, 100), (2000, 900)]),
+      "(x, y) waypoints with a clearance")
 expect(flight.FlightError, lambda: flight.Line(heights, start=(500, 500), end=(500, 500)),
        ("zero length",))
 expect(TypeError, lambda: flight.Orbit("dem.tif"), ("vtkImageData",))

@@ -301,9 +301,13 @@ class Waypoints(Flight):
         frame = GeoFrame(heights) if lonlat else None
         rows = []
         for n, p in enumerate(points, start=1):
-            values = tuple(float(v) for v in p)
-            if len(values) != (2 if clearance is not None and len(values) == 2 else 3):
-                raise FlightError(f"waypoint {n}: expected (x, y, h), got {len(values)} values")
+            try:
+                values = tuple(float(v) for v in p)
+            except (TypeError, ValueError):
+                raise FlightError(f"waypoint {n}: expected numbers, got {p!r:.60}") from None
+            if len(values) != 3 and not (len(values) == 2 and clearance is not None):
+                raise FlightError(f"waypoint {n}: expected (x, y, h), or (x, y) with a "
+                                  f"clearance, got {len(values)} values")
             if not all(math.isfinite(v) for v in values):
                 raise FlightError(f"waypoint {n}: values must be finite, got {values}")
             rows.append((f"waypoint {n}",) + values[:2] + (values[2:] or (0.0,)))
