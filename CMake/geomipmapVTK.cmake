@@ -122,6 +122,25 @@ install(FILES "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/geomipmap/__init__.py"
   DESTINATION "${GEOMIPMAP_PYTHON_DESTINATION}/geomipmap" COMPONENT python)
 # Tests (Testing/Python) run: PYTHONPATH=${GEOMIPMAP_PYTHON_PACKAGE_PARENT} /usr/bin/python3 ...
 
-# geomipmap-fly command, its Python package and tests (Plugin/Python).
-include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapFly.cmake")
-include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapBench.cmake")
+# Pure-Python files, given relative to Plugin/Python: copied into the build tree's package
+# folder (COPYONLY: re-copied on the next build when a source changes, as CMake re-runs)
+# and installed with the same layout under the prefix.
+function(geomipmap_add_python_files)
+  foreach(_f IN LISTS ARGN)
+    configure_file("${PROJECT_SOURCE_DIR}/Plugin/Python/${_f}"
+      "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/${_f}" COPYONLY)
+    get_filename_component(_sub "${_f}" DIRECTORY)
+    install(FILES "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/${_f}"
+      DESTINATION "${GEOMIPMAP_PYTHON_DESTINATION}/${_sub}" COMPONENT python)
+  endforeach()
+endfunction()
+
+# geomipmap.flight: camera paths for any vtkCamera (pure Python, part of the package).
+geomipmap_add_python_files(
+  geomipmap/flight/__init__.py
+  geomipmap/flight/heights.py
+  geomipmap/flight/paths.py
+  geomipmap/flight/waypoints.py)
+
+# The geomipmap-fly and geomipmap-bench commands and their package geomipmap_apps.
+include("${CMAKE_CURRENT_LIST_DIR}/../Plugin/Python/geomipmapApps.cmake")

@@ -8,7 +8,7 @@ build=${GEOMIPMAP_BUILD_DIR:-$here/build}
 packages=(cmake ninja-build g++ pkg-config
   libvtk9-dev python3-vtk9 libgdal-dev libgeographiclib-dev libglm-dev libopenimageio-dev
   libgtest-dev libbenchmark-dev python3-numpy python3-matplotlib python3-geographiclib
-  xvfb xauth)
+  xvfb xauth ffmpeg)  # ffmpeg: geomipmap-fly --video (H.264 / Theora); ffprobe in its tests
 # Callers add packages they need on top (sanitize.sh, fuzz.sh: GEOMIPMAP_EXTRA_PACKAGES,
 # space-separated) and may stop after installing (GEOMIPMAP_SETUP_ONLY=1: no build here).
 read -r -a extra <<<"${GEOMIPMAP_EXTRA_PACKAGES:-}"

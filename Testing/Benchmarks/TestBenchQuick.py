@@ -14,7 +14,6 @@ import os
 import shutil
 import subprocess
 import sys
-import types
 
 if len(sys.argv) != 3:
     sys.exit("usage: TestBenchQuick.py GEOMIPMAP_BENCH SCRATCH_DIR")
@@ -55,16 +54,13 @@ for r in rows:
 
 # The coarse mesh, through the bench's own pieces (same terrain, flight and camera).
 import geomipmap  # noqa: E402
-from geomipmap_bench import meshes  # noqa: E402
-from geomipmap_fly import paths  # noqa: E402
-from geomipmap_fly.errors import VTKMessages  # noqa: E402
-from geomipmap_fly.terrain import load_terrain  # noqa: E402
+from geomipmap import flight  # noqa: E402
+from geomipmap_apps.bench import meshes  # noqa: E402
+from geomipmap_apps.terrain import load_terrain  # noqa: E402
 from vtkmodules.vtkRenderingCore import vtkRenderer  # noqa: E402
 
-args = types.SimpleNamespace(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
-                             synthetic_size=513, seed=1)
-image, heights = load_terrain(args, VTKMessages())
-flight = paths.Flight(paths.orbit_path(heights, None), heights, 3, 15.0)
+image, heights = load_terrain(synthetic_size=513, seed=1)
+orbit = flight.Orbit(heights, frames=3, pitch=15.0, view_angle=50.0)
 coarse = meshes.grid_mesh(heights, 16)
 ren = vtkRenderer()
 cam = ren.GetActiveCamera()
@@ -74,10 +70,7 @@ measure.SetMesh(coarse)
 measure.SetViewportSize(1280, 720)
 xmin, xmax, ymin, ymax = heights.bounds
 for f in range(3):
-    cam.SetPosition(*flight.positions[f])
-    cam.SetFocalPoint(*flight.focal[f])
-    cam.SetViewUp(0, 0, 1)
-    cam.SetViewAngle(50)
+    orbit.apply(cam, f)
     ren.ResetCameraClippingRange(xmin, xmax, ymin, ymax, heights.zmin, heights.zmax)
     measure.SetProjectionMatrix(cam.GetCompositeProjectionTransformMatrix(1280 / 720, -1, 1))
     if not measure.Compute() or not measure.GetMaximumError() > 1.0:

@@ -18,7 +18,7 @@ import os
 import geomipmap  # PYTHONPATH from CTest
 import numpy as np
 from geographiclib.geodesic import Geodesic
-from geomipmap_fly import paths, terrain as fly_terrain
+from geomipmap import flight
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from flytestutil import check, check_measured, measured_flight, png_stats, read_csv, run, setup
@@ -49,7 +49,7 @@ check(var > 20.0 and terrain > 0.3, f"{pngs[0]}: variance {var:.1f}, terrain {te
 check("within tau" in so, f"summary does not certify the error:\n{so}")
 check_measured(frames, rows, tau=float(tau))
 
-# Conversion check: waypoints go through the reader's own frame (terrain.GeoFrame ->
+# Conversion check: waypoints go through the reader's own frame (flight.GeoFrame ->
 # vtkGeoMipMapTerrainReader.GeographicToLocal); checked against facts from outside: the
 # summit's published position lands on the DEM's highest node, and the distance between two
 # waypoints matches GeographicLib's geodesic within the reader's stated accuracy.
@@ -57,7 +57,7 @@ rd = geomipmap.vtkGeoMipMapTerrainReader()
 rd.SetFileName(dem)
 rd.Update()
 img = rd.GetOutput()
-frame = fly_terrain.GeoFrame(img, fly_terrain.Heights(img))
+frame = flight.GeoFrame(img)
 x0, y0 = frame.to_local(frame.lon0, frame.lat0)
 check(abs(x0) < 1e-6 and abs(y0) < 1e-6, "GeographicOrigin maps to local (0, 0)")
 # Mount Rainier's summit, 46.8529 N 121.7604 W (USGS), is the DEM's highest point: the
@@ -82,11 +82,11 @@ check(abs(local - geo) / geo <= bound,
 print(f"waypoint distance {local:.3f} m, geodesic {geo:.3f} m: relative error "
       f"{abs(local - geo) / geo:.2e}")
 # Terrain following: the camera stays at least the clearance above the ground.
-hts = fly_terrain.Heights(img)
-flight = paths.Flight(paths.read_waypoints(wp, img, hts, None), hts, 200, 15.0)
-ground = hts.sample(flight.positions[:, 0], flight.positions[:, 1])
+hts = flight.Heights(img)
+path = flight.Waypoints.from_file(wp, hts, frames=200)
+ground = hts.sample(path.positions[:, 0], path.positions[:, 1])
 ok = ~np.isnan(ground)
-low = float((flight.positions[ok, 2] - ground[ok]).min())
+low = float((path.positions[ok, 2] - ground[ok]).min())
 check(low >= 700.0 - 1.0, f"camera {low:.1f} m above ground, clearance 700")
 lon, lat = frame.to_geographic(xa, ya)
 check(abs(lon + 121.95) < 1e-9 and abs(lat - 46.70) < 1e-9, "round trip lon/lat")

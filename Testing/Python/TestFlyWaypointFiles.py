@@ -1,6 +1,6 @@
 """geomipmap-fly waypoint files, in-process (no rendering): every case of waypointcases.py.
 
-Each malformed file must raise FlyError (the command prints it as one line and exits 2)
+Each malformed file must raise FlightError (the command prints it as one line and exits 2)
 whose text names the file and holds the case's words; nothing else may escape. Each valid
 file must give the expected path in local metres.
 Usage: TestFlyWaypointFiles.py SCRATCH_DIR
@@ -12,8 +12,8 @@ import sys
 
 import numpy as np
 
-from geomipmap_fly.errors import FlyError
-from geomipmap_fly.paths import read_waypoints
+from geomipmap.flight import FlightError
+from geomipmap.flight.waypoints import read_waypoints
 from waypointcases import BAD, GOOD, make_terrain, write
 
 scratch = sys.argv[1]
@@ -31,10 +31,10 @@ def fail(name, why):
 for name, (filename, content, words) in BAD.items():
     path = write(scratch, filename, content)
     try:
-        read_waypoints(path, *terrain[False], None)
+        read_waypoints(path, terrain[False], None)
         fail(name, "accepted")
         continue
-    except FlyError as e:
+    except FlightError as e:
         text = str(e)
     except Exception as e:  # noqa: BLE001: the point of the test
         fail(name, f"{type(e).__name__}: {e!s:.200}")
@@ -48,7 +48,7 @@ for name, (filename, content, words) in BAD.items():
 for name, (filename, content, geo, clearance, xy, heights, agl) in GOOD.items():
     path = write(scratch, filename, content)
     try:
-        p = read_waypoints(path, *terrain[geo], clearance)
+        p = read_waypoints(path, terrain[geo], clearance)
     except Exception as e:  # noqa: BLE001
         fail(name, f"{type(e).__name__}: {e}")
         continue

@@ -1,8 +1,8 @@
 """Seeded mutation fuzzing of geomipmap-fly's waypoint parser, in-process (no rendering).
 
-Every input goes straight to geomipmap_fly.paths.parse_waypoints, the parser behind
+Every input goes straight to geomipmap.flight.waypoints.parse_waypoints, the parser behind
 read_waypoints (which only adds reading the file: no disk I/O per input here). The outcome
-must be a valid Path (at least 2 waypoints, all finite, all on the terrain) or a FlyError
+must be a valid Path (at least 2 waypoints, all finite, all on the terrain) or a FlightError
 whose text is one printable line naming the file; any other exception fails the test, and
 the input that raised it is saved for replay.
 
@@ -28,8 +28,8 @@ import traceback
 
 import numpy as np
 
-from geomipmap_fly.errors import FlyError
-from geomipmap_fly.paths import Path, parse_waypoints
+from geomipmap.flight import FlightError, Path
+from geomipmap.flight.waypoints import parse_waypoints
 from waypointcases import BAD, GOOD, make_terrain
 
 scratch = sys.argv[1]
@@ -139,7 +139,7 @@ def check_path(p, heights):
 
 terrain = {False: make_terrain(False), True: make_terrain(True)}
 rng = random.Random(seed)
-outcomes = {"path": 0, "FlyError": 0}
+outcomes = {"path": 0, "FlightError": 0}
 failures = []
 start = time.perf_counter()
 for it in range(iterations):
@@ -155,16 +155,16 @@ for it in range(iterations):
     geo = rng.random() < 0.3
     clearance = 120.0 if rng.random() < 0.2 else None
     path = os.path.join(scratch, name)  # named in messages; written only on failure
-    image, heights = terrain[geo]
+    heights = terrain[geo]
     problem = None
     try:
-        problem = check_path(parse_waypoints(data, path, image, heights, clearance), heights)
+        problem = check_path(parse_waypoints(data, path, heights, clearance), heights)
         outcomes["path"] += 1
-    except FlyError as e:
+    except FlightError as e:
         text = str(e)
         if path not in text or not text.isprintable() or len(text) > 1000:
-            problem = f"FlyError is not one short printable line naming the file: {text[:300]!r}"
-        outcomes["FlyError"] += 1
+            problem = f"FlightError is not one short printable line naming the file: {text[:300]!r}"
+        outcomes["FlightError"] += 1
     except Exception as e:  # noqa: BLE001: any other exception is the bug we look for
         problem = f"{type(e).__name__}: {str(e)[:200]}\n" + traceback.format_exc(limit=4)
     if problem:
@@ -178,7 +178,7 @@ for it in range(iterations):
             break
 elapsed = time.perf_counter() - start
 print(f"{it + 1} inputs in {elapsed:.1f} s ({(it + 1) / elapsed:.0f}/s): {outcomes['path']} "
-      f"valid paths, {outcomes['FlyError']} FlyErrors, {len(failures)} failure(s)")
+      f"valid paths, {outcomes['FlightError']} FlightErrors, {len(failures)} failure(s)")
 if failures:
     sys.exit(1)
 print("TestFlyWaypointFuzz: passed")

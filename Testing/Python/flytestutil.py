@@ -78,7 +78,8 @@ def measured_flight(argv, every=1):
     import contextlib
     import io
 
-    from geomipmap_fly import cli, scene
+    from geomipmap_apps import scene
+    from geomipmap_apps.fly import cli
     from gmmtestutil import measure_drawn
 
     frames = []

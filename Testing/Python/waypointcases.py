@@ -99,17 +99,17 @@ GOOD = {
 
 
 def make_terrain(geographic=False):
-    """(image, heights) for geomipmap_fly.paths: 65 x 65 samples at 30 m from (0, 0).
+    """geomipmap.flight.Heights of a test image: 65 x 65 samples at 30 m from (0, 0).
 
     geographic: the reader's fields "GeographicOrigin" = lon 1, lat 42 at sample (0, 0) and
     "CentralMeridian" = 1 (its local frame, see vtkGeoMipMapTerrainReader.h).
-    Needs vtkmodules and the geomipmap_fly package on sys.path; renders nothing.
+    Needs vtkmodules and the geomipmap package on sys.path; renders nothing.
     """
     import numpy as np
     from vtkmodules.util.numpy_support import numpy_to_vtk
     from vtkmodules.vtkCommonCore import vtkDoubleArray
     from vtkmodules.vtkCommonDataModel import vtkImageData
-    from geomipmap_fly.terrain import Heights
+    from geomipmap.flight import Heights
 
     n = 65
     j, i = np.mgrid[0:n, 0:n]
@@ -130,7 +130,7 @@ def make_terrain(geographic=False):
         meridian.SetName("CentralMeridian")
         meridian.InsertNextValue(1.0)
         image.GetFieldData().AddArray(meridian)
-    return image, Heights(image)
+    return Heights(image)
 
 
 def write(folder, filename, content):

@@ -16,18 +16,13 @@ import os
 import shlex
 import sys
 
-from geomipmap_fly.errors import FlyError
-
+from .. import command
+from ..errors import AppError
 from . import report
 from .run import run_dem
 
 PROG = "geomipmap-bench"
 METHODS = ("brute", "ours", "greedy", "uniform", "quadric")
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise FlyError(message)
 
 
 def _list(kind, allow_empty=False):
@@ -45,7 +40,7 @@ def _list(kind, allow_empty=False):
 
 
 def build_parser():
-    p = _Parser(prog=PROG, description=__doc__.split("\n")[0],
+    p = command.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0],
                 epilog=__doc__.split("\n", 1)[1], formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--dem", action="append", default=[], metavar="FILE",
                    help="a DEM to add (repeatable)")
@@ -59,7 +54,8 @@ def build_parser():
     p.add_argument("--methods", default=",".join(METHODS), help="subset of " + ",".join(METHODS))
     p.add_argument("--frames", type=int, default=12, help="frames per method (default 12)")
     p.add_argument("--path", choices=("orbit", "line"), default="orbit")
-    p.add_argument("--size", default="1280x720", help="window WxH (default 1280x720)")
+    p.add_argument("--size", type=command.window_size, default=(1280, 720),
+                   help="window WxH (default 1280x720)")
     p.add_argument("--memory-budget-gb", type=float, default=None,
                    help="skip a method whose estimated memory exceeds this (default: 60%% "
                         "of MemAvailable at start)")
@@ -94,32 +90,26 @@ def dem_list(args):
                 dems.append((name, path, None))
     for path in args.dem:
         if not os.path.isfile(path):
-            raise FlyError(f"DEM file not found: {path}")
+            raise AppError(f"DEM file not found: {path}")
         dems.append((os.path.basename(path), path, None))
     return dems
 
 
 def main(argv=None):
-    try:
+    def body():
         args = build_parser().parse_args(argv)
         if args.quick:
             args.synthetic, args.frames, args.tau, args.data_dir = [513], 3, [1.0, 4.0], ""
-        try:
-            args.size = tuple(int(v) for v in args.size.lower().split("x"))
-        except ValueError:
-            raise FlyError(f"--size: expected WxH, e.g. 1280x720, got {args.size!r}") from None
         methods = [m.strip() for m in args.methods.split(",") if m.strip()]
         bad = [m for m in methods if m not in METHODS]
         if bad:
-            raise FlyError(f"--methods: unknown {','.join(bad)} (choose from {','.join(METHODS)})")
+            raise AppError(f"--methods: unknown {','.join(bad)} (choose from {','.join(METHODS)})")
         if args.frames < 1:
-            raise FlyError(f"--frames must be >= 1, got {args.frames}")
-        if len(args.size) != 2 or not all(16 <= v <= 16384 for v in args.size):
-            raise FlyError(f"--size: width and height must be 16..16384, got {args.size}")
+            raise AppError(f"--frames must be >= 1, got {args.frames}")
         if args.replot:
             for d in args.replot:
                 if not os.path.isfile(os.path.join(d, "notes.json")):
-                    raise FlyError(f"--replot: {d} has no notes.json (not a finished run)")
+                    raise AppError(f"--replot: {d} has no notes.json (not a finished run)")
             report.write_report(args.replot, args.out)
             print(f"{PROG}: wrote {args.out}/summary.md, {args.out}/bench.png")
             return 0
@@ -134,6 +124,5 @@ def main(argv=None):
         out.finish()
         print(f"{PROG}: wrote {out.csv_path}, {out.summary_path}, {out.plot_path}")
         return 0
-    except FlyError as e:
-        print(f"{PROG}: error: {e}", file=sys.stderr)
-        return 2
+
+    return command.run(PROG, body)

@@ -7,11 +7,10 @@ exit status 2 (1 for an unexpected internal error), never a traceback.
 
 import argparse
 import glob
-import math
 import os
-import sys
 
-from .errors import FlyError, VTKMessages
+from .. import command, video
+from ..errors import AppError, VTKMessages
 
 PROG = "geomipmap-fly"
 
@@ -31,11 +30,14 @@ and lines starting with # are ignored.
 
 examples:
   geomipmap-fly                                    # orbit over synthetic terrain
-  geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30
+  geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30 --video tile.mp4
   geomipmap-fly --dem dem.tif --waypoints route.csv --tau 2 --every 10 --size 1920x1080
 
 output: DIR/frame_NNNNN.png, DIR/flight.csv (frame, time_s, lod_ms, render_ms, triangles,
-visible_blocks, culled_blocks, certified_error_px, reused) and a summary on stdout.
+visible_blocks, culled_blocks, certified_error_px, reused), with --video a video of every
+frame at --fps (.mp4: H.264 by ffmpeg, even width and height; .ogv: Ogg Theora by ffmpeg,
+or by VTK's vtkOggTheoraWriter where ffmpeg is missing, whole --fps), and a summary on
+stdout.
 exit status: 0 ok, 2 bad input (one line on stderr), 1 internal error.
 """
 
@@ -47,34 +49,6 @@ def min_block_size():
     return vtkGeoMipMapMapper.GetMinimumBlockSize()
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # argparse's default prints usage over several lines
-        raise FlyError(message)
-
-
-def _positive(kind, minimum=0.0, strict=True):
-    def check(text):
-        try:
-            v = kind(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-        if not math.isfinite(v) or (v <= minimum if strict else v < minimum):
-            rel = ">" if strict else ">="
-            raise argparse.ArgumentTypeError(f"must be {rel} {minimum:g}, got {text}")
-        return v
-    return check
-
-
-def _size(text):
-    try:
-        w, h = (int(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected WxH, e.g. 1280x720, got {text!r}") from None
-    if not (16 <= w <= 16384 and 16 <= h <= 16384):
-        raise argparse.ArgumentTypeError(f"width and height must be 16..16384, got {text}")
-    return (w, h)
-
-
 def _colour(text):
     if text == "elevation" or (text.startswith("texture:") and len(text) > 8):
         return text
@@ -82,45 +56,45 @@ def _colour(text):
 
 
 def build_parser():
-    p = _Parser(prog=PROG, description="Fly a camera over a DEM rendered with GeoMipMapping "
+    p = command.ArgumentParser(prog=PROG, description="Fly a camera over a DEM rendered with GeoMipMapping "
                 "LOD; write PNG frames, a per-frame CSV of LOD statistics and a summary.",
                 epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     g = p.add_argument_group("terrain")
     g.add_argument("--dem", metavar="FILE", help="DEM to fly over (any format the "
                    "vtkGeoMipMapTerrainReader reads); default: synthetic terrain")
-    g.add_argument("--height-scale", type=_positive(float), default=1.0,
+    g.add_argument("--height-scale", type=command.positive(float), default=1.0,
                    help="metres per stored height unit (default 1)")
-    g.add_argument("--spacing", type=_positive(float), default=None,
+    g.add_argument("--spacing", type=command.positive(float), default=None,
                    help="sample spacing in metres for images without georeference "
                    "(and the synthetic terrain, default 30)")
     g.add_argument("--terrain-rgb", action="store_true", help="decode an RGB PNG as terrain-RGB")
-    g.add_argument("--synthetic-size", type=_positive(int, 2, strict=False), default=1025,
+    g.add_argument("--synthetic-size", type=command.positive(int, 2, strict=False), default=1025,
                    help="synthetic terrain samples per side (default 1025)")
-    g.add_argument("--seed", type=_positive(int, 0, strict=False), default=1,
+    g.add_argument("--seed", type=command.positive(int, 0, strict=False), default=1,
                    help="synthetic terrain seed (default 1)")
     g = p.add_argument_group("path")
     g.add_argument("--path", choices=("orbit", "line"), default="orbit",
                    help="orbit around the centre (default) or a straight line across")
     g.add_argument("--waypoints", metavar="FILE", help="CSV/JSON waypoints: columns x,y or "
                    "lon,lat, and agl (metres above ground) or z/alt (absolute metres)")
-    g.add_argument("--clearance", type=_positive(float), default=None, metavar="M",
+    g.add_argument("--clearance", type=command.positive(float), default=None, metavar="M",
                    help="follow the terrain at M metres above the ground (smoothed)")
-    g.add_argument("--frames", type=_positive(int, 1, strict=False), default=None,
+    g.add_argument("--frames", type=command.positive(int, 1, strict=False), default=None,
                    help="number of frames (default 300)")
-    g.add_argument("--seconds", type=_positive(float), default=None,
+    g.add_argument("--seconds", type=command.positive(float), default=None,
                    help="flight duration; frames = seconds * fps")
-    g.add_argument("--fps", type=_positive(float), default=30.0, help="frame rate (default 30)")
+    g.add_argument("--fps", type=command.positive(float), default=30.0, help="frame rate (default 30)")
     g.add_argument("--pitch", type=float, default=15.0,
                    help="look-down angle in degrees, -89..89 (default 15)")
     g.add_argument("--view-angle", type=float, default=50.0,
                    help="vertical field of view in degrees (default 50)")
     g = p.add_argument_group("rendering")
-    g.add_argument("--tau", type=_positive(float, 0, strict=False), default=1.0,
+    g.add_argument("--tau", type=command.positive(float, 0, strict=False), default=1.0,
                    help="pixel error bound (default 1)")
     g.add_argument("--block-size", type=int, default=64,
                    help=f"block size in quads, a power of two {min_block_size()}..1024 "
                    "(default 64)")
-    g.add_argument("--size", type=_size, default=(1280, 720), help="WxH (default 1280x720)")
+    g.add_argument("--size", type=command.window_size, default=(1280, 720), help="WxH (default 1280x720)")
     g.add_argument("--color", type=_colour, default="elevation",
                    help="'elevation' (default) or 'texture:FILE.png' (draped over the extent)")
     g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
@@ -129,9 +103,15 @@ def build_parser():
     g = p.add_argument_group("output")
     g.add_argument("--out", default="geomipmap-flight", help="output folder "
                    "(default ./geomipmap-flight)")
-    g.add_argument("--every", type=_positive(int, 1, strict=False), default=1,
+    g.add_argument("--every", type=command.positive(int, 1, strict=False), default=1,
                    help="write every K-th frame as PNG (default 1)")
     g.add_argument("--no-frames", action="store_true", help="write no PNG frames")
+    g.add_argument("--video", metavar="FILE", help="also write the flight as a video, "
+                   "every frame at --fps: FILE.mp4 (H.264, needs ffmpeg) or FILE.ogv "
+                   "(Ogg Theora)")
+    g.add_argument("--video-encoder", choices=video.ENCODERS, default="auto",
+                   help="auto (default): ffmpeg when it is on PATH, else VTK's "
+                   "vtkOggTheoraWriter (.ogv only)")
     return p
 
 
@@ -139,70 +119,100 @@ def check(args):
     """Cross-option checks argparse cannot express."""
     b, least = args.block_size, min_block_size()
     if b < least or b > 1024 or b & (b - 1):
-        raise FlyError(f"--block-size must be a power of two in {least}..1024, got {b}")
+        raise AppError(f"--block-size must be a power of two in {least}..1024, got {b}")
     if not -89.0 <= args.pitch <= 89.0:
-        raise FlyError(f"--pitch must be in -89..89 degrees, got {args.pitch:g}")
+        raise AppError(f"--pitch must be in -89..89 degrees, got {args.pitch:g}")
     if not 1.0 <= args.view_angle <= 170.0:
-        raise FlyError(f"--view-angle must be in 1..170 degrees, got {args.view_angle:g}")
+        raise AppError(f"--view-angle must be in 1..170 degrees, got {args.view_angle:g}")
     if args.frames is not None and args.seconds is not None:
-        raise FlyError("give --frames or --seconds, not both")
+        raise AppError("give --frames or --seconds, not both")
     if args.seconds is not None:
         args.frames = int(round(args.seconds * args.fps))
         if args.frames < 1:
-            raise FlyError(f"--seconds {args.seconds:g} at --fps {args.fps:g} gives no frame")
+            raise AppError(f"--seconds {args.seconds:g} at --fps {args.fps:g} gives no frame")
     elif args.frames is None:
         args.frames = 300
     if args.waypoints and not os.path.isfile(args.waypoints):
-        raise FlyError(f"waypoint file not found: {args.waypoints}")
+        raise AppError(f"waypoint file not found: {args.waypoints}")
     if args.dem and not os.path.isfile(args.dem):
-        raise FlyError(f"DEM file not found: {args.dem}")
+        raise AppError(f"DEM file not found: {args.dem}")
+    if args.video:
+        video.check(args.video, args.size, args.fps, args.video_encoder)
     if not os.environ.get("DISPLAY"):
-        raise FlyError("no X display (DISPLAY is unset): VTK here renders through X; "
+        raise AppError("no X display (DISPLAY is unset): VTK here renders through X; "
                        "run under xvfb-run -a")
 
 
 def fly(args):
     """Everything after option parsing; returns the summary text."""
-    from . import paths, report, scene, terrain
+    from geomipmap import flight
+
+    from .. import scene, terrain
+    from . import report
 
     messages = VTKMessages()
-    image, heights = terrain.load_terrain(args, messages)
+    image, heights = terrain.load_terrain(
+        dem=args.dem, height_scale=args.height_scale, spacing=args.spacing,
+        terrain_rgb=args.terrain_rgb, synthetic_size=args.synthetic_size, seed=args.seed,
+        messages=messages)
+    how = dict(clearance=args.clearance, frames=args.frames, pitch=args.pitch,
+               view_angle=args.view_angle)
     if args.waypoints:
-        path = paths.read_waypoints(args.waypoints, image, heights, args.clearance)
+        path = flight.Waypoints.from_file(args.waypoints, heights, **how)
     elif args.path == "line":
-        path = paths.line_path(heights, args.clearance)
+        path = flight.Line(heights, **how)
     else:
-        path = paths.orbit_path(heights, args.clearance)
-    flight = paths.Flight(path, heights, args.frames, args.pitch)
-    view = scene.Scene(image, heights, args, messages)
-    # Only now, when the input is known good, touch the output folder.
+        path = flight.Orbit(heights, **how)
+    view = scene.Scene(image, heights, block_size=args.block_size, tau=args.tau,
+                       color=args.color, lighting=not args.no_lighting, size=args.size,
+                       on_screen=args.interactive, title=PROG, messages=messages)
+    # Only now, when the input is known good, touch the output folders.
+    folder = args.out
     try:
-        os.makedirs(args.out, exist_ok=True)
-        for old in glob.glob(os.path.join(args.out, "frame_[0-9][0-9][0-9][0-9][0-9].png")):
+        os.makedirs(folder, exist_ok=True)
+        for old in glob.glob(os.path.join(folder, "frame_[0-9][0-9][0-9][0-9][0-9].png")):
             os.remove(old)  # frames of an earlier flight would be mixed with this one's
+        if args.video:
+            folder = os.path.dirname(os.path.abspath(args.video))
+            os.makedirs(folder, exist_ok=True)
     except OSError as e:
-        raise FlyError(f"cannot write to output folder {args.out}: {e.strerror}") from None
+        raise AppError(f"cannot write to output folder {folder}: {e.strerror}") from None
     csv_name = os.path.join(args.out, "flight.csv")
     log = report.FrameLog(csv_name)
-    progress = report.Progress(args.frames)
+    movie = video.VideoWriter(args.video, args.size, args.fps, args.video_encoder) \
+        if args.video else None
+    progress = report.Progress(len(path))
     written = 0
     try:
-        for i in range(args.frames):
-            view.set_camera(flight.positions[i], flight.focal[i])
+        for i in range(len(path)):
+            path.apply(view.renderer, i)
             stats = view.render()
             if i == 0 and (err := messages.first_error()):
-                raise FlyError(f"rendering failed: {err}")
+                raise AppError(f"rendering failed: {err}")
             log.add(i, i / args.fps, stats)
-            if not args.no_frames and i % args.every == 0:
+            png = not args.no_frames and i % args.every == 0
+            if png or movie:
+                frame = view.capture()
+            if png:
                 view.write_png(os.path.join(args.out, f"frame_{i:05d}.png"))
                 written += 1
+            if movie:
+                movie.add(frame)
             progress.update(i + 1)
+    except BaseException:
+        if movie:
+            movie.close(quiet=True)  # what was rendered stays playable; the error is told
+        raise
     finally:
         progress.finish()
         log.close()
+    if movie:
+        movie.close()
     where = [f"CSV: {os.path.abspath(csv_name)}"]
     where.append(f"frames: {written} PNG in {os.path.abspath(args.out)}" if written
                  else "frames: none written (--no-frames)")
+    if movie:
+        where.append(movie.describe())
     text = report.summary(log.rows, args.tau, where)
     if args.interactive:
         print(text)
@@ -212,30 +222,12 @@ def fly(args):
 
 
 def main(argv=None):
-    try:
+    def body():
         args = build_parser().parse_args(argv)
         check(args)
         text = fly(args)
         if text:
             print(text)
         return 0
-    except FlyError as e:
-        print(f"{PROG}: error: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print(f"{PROG}: interrupted", file=sys.stderr)
-        return 130
-    except ImportError as e:
-        print(f"{PROG}: error: cannot import the geomipmap package ({e}); "
-              "is it built / installed next to this command?", file=sys.stderr)
-        return 2
-    except MemoryError:
-        print(f"{PROG}: error: out of memory", file=sys.stderr)
-        return 2
-    except Exception as e:  # noqa: BLE001: last resort, still one line
-        msg = " ".join(str(e).split())[:300]
-        print(f"{PROG}: internal error: {type(e).__name__}: {msg} "
-              "(set GEOMIPMAP_FLY_DEBUG=1 for a traceback)", file=sys.stderr)
-        if os.environ.get("GEOMIPMAP_FLY_DEBUG"):
-            raise
-        return 1
+
+    return command.run(PROG, body)

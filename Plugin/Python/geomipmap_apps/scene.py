@@ -1,8 +1,8 @@
-"""Rendering for geomipmap-fly: window, LOD mapper, colouring, lights, timed frames.
+"""Rendering for the geomipmap tools: window, LOD mapper, colouring, lights, timed frames.
 
 Why: keeps every VTK rendering detail (off-screen vs. window, sky, sun, colour map or
-texture, how a frame's render time is measured, PNG output) away from the CLI and path
-code. Render time is the wall time of Render() plus WaitForCompletion() (a glFinish), so
+texture, how a frame's render time is measured, PNG output) away from the command lines
+and the path code, and the same in every tool. Render time is the wall time of Render() plus WaitForCompletion() (a glFinish), so
 the GPU/llvmpipe work is counted, not just the command submission.
 """
 
@@ -22,7 +22,7 @@ from vtkmodules.vtkRenderingCore import (
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (OpenGL factory overrides)
 import vtkmodules.vtkInteractionStyle  # noqa: F401
 
-from .errors import FlyError
+from .errors import AppError, VTKMessages
 
 # Hypsometric tints: fraction of the height range -> RGB (lowland green .. snow).
 TERRAIN_COLOURS = (
@@ -37,22 +37,31 @@ TERRAIN_COLOURS = (
 
 
 class Scene:
-    """One renderer with the terrain actor, driven frame by frame."""
+    """One renderer with the terrain actor, driven frame by frame.
 
-    def __init__(self, image, heights, args, messages):
+    image, heights: the terrain (terrain.load_terrain). block_size, tau: the mapper's
+    block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
+    "texture:FILE.png" (draped over the extent). size: the window's (width, height).
+    on_screen: a window on the display instead of off-screen rendering. title: the
+    window's name. messages: VTKMessages for errors (texture reading). The camera is
+    the renderer's active one; a geomipmap.flight path drives it (apply(renderer, frame)).
+    """
+
+    def __init__(self, image, heights, block_size=64, tau=1.0, color="elevation",
+                 lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
+                 messages=None):
         import geomipmap
 
-        self.args = args
-        self.messages = messages
+        self.messages = messages or VTKMessages()
         self.mapper = geomipmap.vtkGeoMipMapMapper()
         self.mapper.SetInputData(image)
-        self.mapper.SetBlockSize(args.block_size)
-        self.mapper.SetPixelError(args.tau)
+        self.mapper.SetBlockSize(block_size)
+        self.mapper.SetPixelError(tau)
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)
-        self._colour(heights)
+        self._colour(heights, color)
         prop = self.actor.GetProperty()
-        if args.no_lighting:
+        if not lighting:
             prop.LightingOff()
         else:
             prop.SetAmbient(0.25)
@@ -65,19 +74,18 @@ class Scene:
         self.renderer.SetBackground(0.78, 0.86, 0.95)
         self.renderer.SetBackground2(0.30, 0.50, 0.80)
         self.renderer.SetNearClippingPlaneTolerance(0.0005)  # low flights: near plane close
-        if not args.no_lighting:
+        if lighting:
             self._sun()
 
         self.window = vtkRenderWindow()
-        self.window.SetSize(*args.size)
+        self.window.SetSize(*size)
         self.window.AddRenderer(self.renderer)
-        self.window.SetWindowName("geomipmap-fly")
+        self.window.SetWindowName(title)
         self.window.SetMultiSamples(0)
-        self.window.SetOffScreenRendering(0 if args.interactive else 1)
+        self.window.SetOffScreenRendering(0 if on_screen else 1)
         self.grab = None
 
-    def _colour(self, heights):
-        spec = self.args.color
+    def _colour(self, heights, spec):
         if spec == "elevation":
             ctf = vtkColorTransferFunction()
             lo, hi = heights.zmin, max(heights.zmax, heights.zmin + 1e-3)
@@ -90,16 +98,16 @@ class Scene:
             return
         path = spec.split(":", 1)[1]
         if not os.path.isfile(path):
-            raise FlyError(f"texture image not found: {path}")
+            raise AppError(f"texture image not found: {path}")
         reader = vtkPNGReader()
         if not reader.CanReadFile(path):
-            raise FlyError(f"texture is not a PNG image: {path}")
+            raise AppError(f"texture is not a PNG image: {path}")
         self.messages.observe(reader)
         reader.SetFileName(path)
         reader.Update()
         dims = reader.GetOutput().GetDimensions()
         if self.messages.first_error() or dims[0] < 1 or dims[1] < 1:
-            raise FlyError(f"cannot read texture {path}: {self.messages.first_error()}")
+            raise AppError(f"cannot read texture {path}: {self.messages.first_error()}")
         tex = vtkTexture()
         tex.SetInputConnection(reader.GetOutputPort())
         tex.InterpolateOn()
@@ -119,14 +127,6 @@ class Scene:
         sun.SetIntensity(1.0)
         self.renderer.AddLight(sun)
 
-    def set_camera(self, position, focal):
-        cam = self.renderer.GetActiveCamera()
-        cam.SetPosition(*position)
-        cam.SetFocalPoint(*focal)
-        cam.SetViewUp(0.0, 0.0, 1.0)
-        cam.SetViewAngle(self.args.view_angle)
-        self.renderer.ResetCameraClippingRange()
-
     def render(self):
         """Render one frame; return (render_ms, lod_ms, stats dict)."""
         t0 = time.perf_counter()
@@ -145,7 +145,9 @@ class Scene:
         }
         return stats
 
-    def write_png(self, filename):
+    def capture(self):
+        """Grab the frame rendered last; returns the vtkImageData (RGB, bottom row first).
+        Once a frame: write_png and a video both use this grab."""
         if self.grab is None:
             self.grab = vtkWindowToImageFilter()
             self.grab.SetInput(self.window)
@@ -154,6 +156,11 @@ class Scene:
             self.png = vtkPNGWriter()
             self.png.SetInputConnection(self.grab.GetOutputPort())
         self.grab.Modified()
+        self.grab.Update()
+        return self.grab.GetOutput()
+
+    def write_png(self, filename):
+        """Write the frame captured last (capture()) as PNG."""
         self.png.SetFileName(filename)
         self.png.Write()
 

@@ -25,7 +25,7 @@ DEPTH_QUANTUM = 2.0 ** -24
 
 
 class Bench:
-    """One window and renderer (geomipmap_fly's Scene); one actor shown at a time."""
+    """One window and renderer (geomipmap_apps.scene.Scene); one actor shown at a time."""
 
     def __init__(self, scene, image, heights, flight, size):
         import geomipmap
@@ -47,7 +47,7 @@ class Bench:
     def camera(self, frame):
         """Frame's camera; one clipping range for every method (from the terrain's bounds),
         so that depth buffers are comparable."""
-        self.scene.set_camera(self.flight.positions[frame], self.flight.focal[frame])
+        self.flight.apply(self.scene.renderer.GetActiveCamera(), frame)
         self.scene.renderer.ResetCameraClippingRange(*self.bounds)
 
     def show(self, actor):

@@ -1,7 +1,7 @@
-"""Errors and VTK message capture for geomipmap-fly.
+"""Errors and VTK message capture for the geomipmap tools.
 
 Why: a command-line tool must fail with one readable line, not a traceback or a
-multi-line VTK error dump. Every expected failure raises FlyError; VTK's own messages
+multi-line VTK error dump. Every expected failure raises AppError; VTK's own messages
 are routed into a string buffer (vtkStringOutputWindow) so the first error can be
 quoted in that one line instead of being printed by VTK.
 """
@@ -12,7 +12,7 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand, vtkOutputWindow, vtkStringOutputWindow
 
 
-class FlyError(Exception):
+class AppError(Exception):
     """An expected failure (bad option, bad file, ...): reported as one line, exit 2."""
 
 

@@ -10,14 +10,12 @@ Memory: a method whose estimated footprint exceeds the budget is skipped, with t
 import os
 import resource
 import time
-import types
 
 import numpy as np
-from geomipmap_fly import paths
-from geomipmap_fly.errors import FlyError, VTKMessages
-from geomipmap_fly.scene import Scene
-from geomipmap_fly.terrain import load_terrain
 
+from ..errors import AppError, VTKMessages
+from ..scene import Scene
+from ..terrain import load_terrain
 from . import meshes
 from .measure import Bench
 
@@ -47,6 +45,8 @@ def _gb(method, samples):
 
 
 def run_dem(label, path, n, args, methods, budget_gb, out):
+    from geomipmap import flight
+
     def skip(m, why):
         out.skip(label, m, why)
         print(f"[{label}] {m}: skipped: {why}", flush=True)
@@ -61,14 +61,12 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
             skip(m, why)
         return
     messages = VTKMessages()
-    ns = types.SimpleNamespace(dem=path, height_scale=1.0, spacing=None, terrain_rgb=False,
-                               synthetic_size=n or 0, seed=1)
-    if path:
-        vars(ns).update(KNOWN_FILES.get(os.path.basename(path), {}))
+    settings = KNOWN_FILES.get(os.path.basename(path), {}) if path else {}
     t0 = time.perf_counter()
     try:
-        image, heights = load_terrain(ns, messages)
-    except FlyError as e:
+        image, heights = load_terrain(dem=path, synthetic_size=n or 0, messages=messages,
+                                      **settings)
+    except AppError as e:
         skip("all", f"cannot load: {e}")
         return
     samples = heights.nx * heights.ny
@@ -79,13 +77,11 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
         for m in methods:
             skip(m, "ours does not run (memory budget or --methods): no triangle counts")
         return
-    sargs = types.SimpleNamespace(block_size=64, tau=args.tau[0], color="elevation",
-                                  no_lighting=False, size=args.size, interactive=False,
-                                  view_angle=50.0)
-    scene = Scene(image, heights, sargs, messages)
-    route = (paths.line_path if args.path == "line" else paths.orbit_path)(heights, None)
-    bench = Bench(scene, image, heights, paths.Flight(route, heights, args.frames, 15.0),
-                  args.size)
+    scene = Scene(image, heights, block_size=64, tau=args.tau[0], size=args.size,
+                  title="geomipmap-bench", messages=messages)
+    route = (flight.Line if args.path == "line" else flight.Orbit)(
+        heights, frames=args.frames, pitch=15.0, view_angle=50.0)
+    bench = Bench(scene, image, heights, route, args.size)
     configs = _build(label, args, methods, over, budget_gb, bench, heights, image, skip, out)
     _fly(label, args, configs, bench, heights, out)
     out.note(label, f"peak RSS {_rss_gb():.1f} GB")

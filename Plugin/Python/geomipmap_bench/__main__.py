@@ -1,7 +1,0 @@
-"""`python3 -m geomipmap_bench ...` runs the same program as the geomipmap-bench launcher."""
-
-import sys
-
-from .cli import main
-
-sys.exit(main())

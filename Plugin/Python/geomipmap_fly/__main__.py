@@ -1,7 +1,0 @@
-"""`python3 -m geomipmap_fly ...` runs the same program as the geomipmap-fly launcher."""
-
-import sys
-
-from .cli import main
-
-sys.exit(main())

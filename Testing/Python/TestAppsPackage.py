@@ -1,0 +1,68 @@
+"""The apps package's boundaries (issue #15, part 6), each in a fresh interpreter:
+
+- the product, `import geomipmap, geomipmap.flight`, loads nothing of the tools
+  (geomipmap_apps) nor argparse or matplotlib;
+- a whole geomipmap-fly flight, run in-process, loads none of the benchmark's modules
+  (geomipmap_apps.bench: its measurement code) nor matplotlib;
+- both launchers answer --help with their own name.
+Usage: TestAppsPackage.py GEOMIPMAP_FLY GEOMIPMAP_BENCH SCRATCH_DIR
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+fly_exe, bench_exe, scratch = sys.argv[1:4]
+shutil.rmtree(scratch, ignore_errors=True)
+os.makedirs(scratch)
+failures = []
+
+
+def modules_after(code):
+    """The module names loaded after running `code` in a fresh interpreter."""
+    script = code + "\nimport json, sys\nprint(json.dumps(sorted(sys.modules)))\n"
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                       timeout=120)
+    if p.returncode != 0:
+        failures.append(f"{code!r} failed ({p.returncode}): {p.stderr.strip()[-500:]}")
+        return []
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def loaded(modules, prefixes):
+    return [m for m in modules if m.split(".")[0] in prefixes or m in prefixes
+            or any(m.startswith(p + ".") for p in prefixes)]
+
+
+product = modules_after("import geomipmap, geomipmap.flight")
+bad = loaded(product, ("geomipmap_apps", "argparse", "matplotlib"))
+if "geomipmap.flight" not in product:
+    failures.append("geomipmap.flight was not imported")
+if bad:
+    failures.append(f"import geomipmap.flight loads {bad}")
+print(f"geomipmap.flight: {len(product)} modules, none of the tools'")
+
+out = os.path.join(scratch, "flight")
+fly = modules_after(
+    "import sys\nfrom geomipmap_apps.fly import cli\n"
+    f"rc = cli.main(['--synthetic-size', '65', '--frames', '2', '--size', '64x64', "
+    f"'--out', {out!r}])\n"
+    "if rc: sys.exit(rc)")
+bad = loaded(fly, ("geomipmap_apps.bench", "matplotlib"))
+if "geomipmap_apps.fly.cli" not in fly or not os.path.isfile(os.path.join(out, "flight.csv")):
+    failures.append("the in-process flight did not run")
+if bad:
+    failures.append(f"a geomipmap-fly flight loads the benchmark's {bad}")
+print(f"geomipmap-fly flight: {len(fly)} modules, none of the benchmark's")
+
+for exe, name in ((fly_exe, "geomipmap-fly"), (bench_exe, "geomipmap-bench")):
+    p = subprocess.run([exe, "--help"], capture_output=True, text=True, timeout=60)
+    if p.returncode != 0 or not p.stdout.startswith(f"usage: {name}"):
+        failures.append(f"{name} --help: exit {p.returncode}, {p.stdout[:80]!r} {p.stderr!r}")
+
+if failures:
+    print("FAIL:\n  " + "\n  ".join(failures))
+    sys.exit(1)
+print("TestAppsPackage: passed")
