@@ -80,6 +80,9 @@ struct vtkGeoMipMapMapper::Internals
 
   std::vector<unsigned int> Lines; // scratch for wireframe edges
   size_t IndexBytes = 0;
+  // The index buffer holds the engine's arena as of this version (0: it does not).
+  uint64_t MirroredArena = 0;
+  int PrimitiveRestart = -1; // GL_PRIMITIVE_RESTART_FIXED_INDEX available (-1: not asked)
 
   // x, y bounds of the valid samples of Terrain (found once per terrain).
   const gmm::Terrain* BoundsOf = nullptr;
@@ -371,6 +374,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   // input or camera error below must not leave the previous frame's figures behind).
   this->LastFrameDrawn = false;
   this->LastUpdateTime = this->LastIndexUploadTime = 0.0;
+  this->LastIndexUploadBytes = 0;
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
   if (!this->Static)
   {
@@ -458,7 +462,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   this->RenderPieceStart(ren, act); // may rebuild buffers, and then the IBO through BuildIBO
   if (this->IndicesDirty)
   {
-    this->UploadIndices(act);
+    this->UploadIndices(act, false);
   }
   this->RenderPieceDraw(ren, act);
   this->RenderPieceFinish(ren, act);
@@ -560,45 +564,78 @@ void vtkGeoMipMapMapper::BuildIBO(vtkRenderer*, vtkActor* act, vtkPolyData*)
   {
     this->Primitives[i].IBO->IndexCount = 0;
   }
-  this->UploadIndices(act);
+  this->UploadIndices(act, true); // a new buffer: everything
 }
 
-void vtkGeoMipMapMapper::UploadIndices(vtkActor* act)
+void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
 {
+  Internals& in = *this->Internal;
   const auto start = Clock::now();
-  const std::vector<uint32_t>& tris = this->Internal->Engine.indices();
   vtkOpenGLIndexBufferObject* ibo = this->Primitives[PrimitiveTris].IBO;
   ++this->NumberOfIndexUploads;
   this->IndicesDirty = false;
-  if (tris.empty())
+  if (in.PrimitiveRestart < 0)
+  {
+    in.PrimitiveRestart = (GLEW_VERSION_4_3 || GLEW_ARB_ES3_compatibility) ? 1 : 0;
+  }
+  const gmm::IndexArena& arena = in.Engine.indexArena();
+  // The arena (slots, unused space = restart index) needs primitive restart; without it,
+  // the plain concatenated triangles are uploaded whole.
+  const std::vector<uint32_t>& tris = in.PrimitiveRestart ? arena.indices() : in.Engine.indices();
+  vtkTypeInt64 bytes = 0;
+  if (in.Engine.stats().triangles == 0)
   {
     ibo->IndexCount = 0;
+    in.MirroredArena = 0;
   }
   else if (act->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
   {
     // The stock mapper draws wireframe triangles as GL_LINES: three edges per triangle.
-    std::vector<unsigned int>& up = this->Internal->Lines;
-    up.resize(tris.size() * 2);
-    for (std::size_t t = 0; t < tris.size(); t += 3)
+    // From the plain list in block order: an edge shared by two triangles is drawn twice,
+    // and which one shows depends on the order, which must not depend on the history.
+    const std::vector<uint32_t>& plain = in.Engine.indices();
+    std::vector<unsigned int>& up = in.Lines;
+    up.resize(plain.size() * 2);
+    for (std::size_t t = 0; t < plain.size(); t += 3)
     {
       unsigned int* e = up.data() + 2 * t;
-      e[0] = tris[t];
-      e[1] = tris[t + 1];
-      e[2] = tris[t + 1];
-      e[3] = tris[t + 2];
-      e[4] = tris[t + 2];
-      e[5] = tris[t];
+      e[0] = plain[t];
+      e[1] = plain[t + 1];
+      e[2] = plain[t + 1];
+      e[3] = plain[t + 2];
+      e[4] = plain[t + 2];
+      e[5] = plain[t];
     }
     ibo->Upload(up, vtkOpenGLBufferObject::ElementArrayBuffer);
     ibo->IndexCount = up.size();
+    bytes = static_cast<vtkTypeInt64>(up.size() * sizeof(unsigned int));
+    in.MirroredArena = 0;
   }
-  else
+  else if (!in.PrimitiveRestart || whole || arena.rewritten() ||
+    in.MirroredArena + 1 != arena.version() || ibo->IndexCount != tris.size())
   {
     // Triangles (GL_TRIANGLES) or points (GL_POINTS draws every referenced vertex).
     ibo->Upload(tris, vtkOpenGLBufferObject::ElementArrayBuffer);
     ibo->IndexCount = tris.size();
+    bytes = static_cast<vtkTypeInt64>(tris.size() * sizeof(unsigned int));
+    in.MirroredArena = in.PrimitiveRestart ? arena.version() : 0;
   }
-  this->Internal->IndexBytes = ibo->IndexCount * sizeof(unsigned int);
+  else
+  {
+    // Only the slots this frame changed.
+    ibo->Bind();
+    for (const gmm::IndexArena::Range& r : arena.dirtyRanges())
+    {
+      const GLsizeiptr n = static_cast<GLsizeiptr>((r.end - r.begin) * sizeof(unsigned int));
+      glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(r.begin * sizeof(unsigned int)),
+        n, tris.data() + r.begin);
+      bytes += n;
+    }
+    ibo->Release();
+    in.MirroredArena = arena.version();
+  }
+  in.IndexBytes = ibo->IndexCount * sizeof(unsigned int);
+  this->LastIndexUploadBytes += bytes;
   this->LastIndexUploadTime += SecondsSince(start);
 }
 
@@ -626,8 +663,17 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   }
   tris.IBO->Bind();
   // glDrawElements, not VTK's glDrawRangeElements: the range would be the proxy's one
-  // vertex, while the indices address every sample.
+  // vertex, while the indices address every sample. The arena's unused space is the
+  // fixed restart index, which draws nothing.
+  if (in.PrimitiveRestart > 0)
+  {
+    glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  }
   glDrawElements(mode, static_cast<GLsizei>(tris.IBO->IndexCount), GL_UNSIGNED_INT, nullptr);
+  if (in.PrimitiveRestart > 0)
+  {
+    glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+  }
   tris.IBO->Release();
   in.GPU.Unbind();
 }
@@ -724,6 +770,8 @@ void vtkGeoMipMapMapper::ReleaseWindowResources()
   vtkOpenGLRenderWindow* win = in.Window;
   in.ShaderKeys.clear();
   in.IndexBytes = 0;
+  in.MirroredArena = 0;
+  in.PrimitiveRestart = -1;
   this->IndicesDirty = true;
   if (!win)
   {

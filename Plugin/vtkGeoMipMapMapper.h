@@ -183,11 +183,18 @@ public:
   vtkGetMacro(LastTablesFromCache, bool);
   ///@}
 
+  ///@{
   /**
    * Wall time, in seconds, spent uploading the triangle index buffer during the last
-   * rendered frame (0 when the indices were reused).
+   * rendered frame (0 when the indices were reused), and the bytes uploaded. The buffer
+   * mirrors the engine's index arena (gmm::IndexArena): a frame uploads only the slots of
+   * the blocks whose triangles changed, unless the arena was rewritten (first frame,
+   * growth, compaction), the representation is wireframe, or OpenGL lacks the fixed
+   * primitive-restart index (4.3 / ES 3.0); then the whole list is uploaded.
    */
   vtkGetMacro(LastIndexUploadTime, double);
+  vtkGetMacro(LastIndexUploadBytes, vtkTypeInt64);
+  ///@}
 
   /**
    * Bytes held on the GPU: height, colour and lookup-table textures and the index buffer.
@@ -258,7 +265,9 @@ protected:
   bool UpdateTerrain(vtkImageData* image);
   // Heights, colouring arrays and lookup table on the GPU of `win`; false on failure.
   bool UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData* image, vtkActor* act);
-  void UploadIndices(vtkActor* act);
+  // Uploads the frame's indices: the arena's changed ranges, or everything when `whole`
+  // (a new buffer) or when the buffer does not mirror the previous frame's arena.
+  void UploadIndices(vtkActor* act, bool whole);
   // Frees the GPU data of the window they live in (its context made current).
   void ReleaseWindowResources();
   // Marks the mapper modified for a change that needs new indices but no new buffers.
@@ -275,6 +284,7 @@ protected:
   int NumberOfHeightUploads = 0;
   int NumberOfIndexUploads = 0;
   double LastIndexUploadTime = 0.0;
+  vtkTypeInt64 LastIndexUploadBytes = 0;
   double LastHeightUploadTime = 0.0;
   double LastTerrainBuildTime = 0.0;
   bool LastTablesFromCache = false;

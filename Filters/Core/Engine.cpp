@@ -37,11 +37,12 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
 {
   terrain_ = terrain ? std::move(terrain) : std::make_shared<const Terrain>();
   const int blocks = terrain_->qt.blockCount();
-  indices_.clear();
   levels_.clear();
   stats_ = FrameStats();
   drawnConfig_.assign(blocks, notDrawn());
-  blockTriangles_.assign(blocks, {});
+  arena_.reset(blocks);
+  indices_.clear();
+  indicesCurrent_ = true;
 }
 
 const FrameStats& Engine::update(const View& view, double tau)
@@ -141,6 +142,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
   const Terrain& t = *terrain_;
   FrameStats s;
   bool changed = false;
+  arena_.beginFrame();
   for (int b = 0; b < t.qt.blockCount(); ++b)
   {
     const BlockConfig cfg = levels_[b] >= 0 ? blockConfigOf(t.qt, levels_, b) : notDrawn();
@@ -164,32 +166,39 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
     }
     changed = true;
     drawnConfig_[b] = cfg;
-    std::vector<uint32_t>& tris = blockTriangles_[b];
-    tris.clear();
+    blockScratch_.clear();
     if (cfg.level >= 0)
     {
-      emitBlock(t.hf, t.qt, b, cfg, BlockPart::Whole, tris);
+      emitBlock(t.hf, t.qt, b, cfg, BlockPart::Whole, blockScratch_);
       ++s.blocksRetessellated;
     }
+    arena_.assign(b, blockScratch_.data(), blockScratch_.size());
   }
+  arena_.endFrame();
   if (changed)
   {
-    std::size_t total = 0;
-    for (const auto& tris : blockTriangles_)
-    {
-      total += tris.size();
-    }
-    indices_.clear();
-    indices_.reserve(total);
-    for (const auto& tris : blockTriangles_)
-    {
-      indices_.insert(indices_.end(), tris.begin(), tris.end());
-    }
+    indicesCurrent_ = false; // indices() concatenates on demand; the mapper draws the arena
   }
   s.reused = !changed;
-  s.triangles = indices_.size() / 3;
+  s.triangles = arena_.liveIndices() / 3;
   stats_ = s;
   return stats_;
+}
+
+} // namespace gmm
+
+namespace gmm
+{
+
+const std::vector<uint32_t>& Engine::indices() const
+{
+  if (!indicesCurrent_)
+  {
+    indices_.clear();
+    arena_.appendTriangles(indices_);
+    indicesCurrent_ = true;
+  }
+  return indices_;
 }
 
 } // namespace gmm

@@ -9,6 +9,7 @@
 
 #include "ErrorTable.h"
 #include "Heightfield.h"
+#include "IndexArena.h"
 #include "Quadtree.h"
 #include "SelectLevels.h"
 #include "Tessellate.h"
@@ -75,7 +76,11 @@ public:
   void setErrorMetric(ErrorMetric m) { metric_ = m; }
   ErrorMetric errorMetric() const { return metric_; }
 
-  const std::vector<uint32_t>& indices() const { return indices_; }
+  // The frame's triangles, block by block in block order (concatenated on first use).
+  const std::vector<uint32_t>& indices() const;
+  // The same triangles in per-block slots, with the ranges this frame changed: what a
+  // renderer mirrors in an index buffer and updates incrementally (IndexArena.h).
+  const IndexArena& indexArena() const { return arena_; }
   const std::vector<int8_t>& levels() const { return levels_; }
   const FrameStats& stats() const { return stats_; }
   const std::string& lastError() const { return lastError_; }
@@ -96,11 +101,14 @@ private:
   std::vector<uint8_t> visible_;
   std::vector<double> factor_;
   std::vector<int8_t> levels_;
-  // Per-block cache: the configuration each block was last tessellated with (level -1 =
-  // not drawn) and its triangles, so a frame regenerates only blocks whose config changed.
+  // Per block, the configuration it was last tessellated with (level -1 = not drawn), so a
+  // frame regenerates only blocks whose configuration changed; their triangles live in
+  // the arena's slots.
   std::vector<BlockConfig> drawnConfig_;
-  std::vector<std::vector<uint32_t>> blockTriangles_;
-  std::vector<uint32_t> indices_;
+  IndexArena arena_;
+  std::vector<uint32_t> blockScratch_;
+  mutable std::vector<uint32_t> indices_;
+  mutable bool indicesCurrent_ = true;
   FrameStats stats_;
   std::string lastError_;
 };
