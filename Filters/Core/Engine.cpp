@@ -40,6 +40,7 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   levels_.clear();
   stats_ = FrameStats();
   drawnConfig_.assign(blocks, notDrawn());
+  drawnList_.clear();
   arena_.reset(blocks);
   indices_.clear();
   indicesCurrent_ = true;
@@ -61,10 +62,10 @@ const FrameStats& Engine::update(const View& view, double tau)
   }
   const Terrain& t = *terrain_;
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
-  cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_);
-  projectionFactors(t.qt, view, toWorld, visible_, metric_, factor_);
-  selectLevels(t.qt, t.table, factor_, tau, levels_);
-  return finishFrame(&factor_);
+  cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_, visibleList_);
+  projectionFactors(t.qt, view, toWorld, visibleList_, metric_, factor_);
+  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_);
+  return finishFrame(&factor_, &visibleList_);
 }
 
 std::string validateHeightScale(double scale)
@@ -137,14 +138,35 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
   return finishFrame(nullptr);
 }
 
-const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
+const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates)
 {
   const Terrain& t = *terrain_;
   FrameStats s;
   bool changed = false;
   arena_.beginFrame();
-  for (int b = 0; b < t.qt.blockCount(); ++b)
+  // Only blocks drawn now or last frame can change: the rest of the DEM costs nothing.
+  nowDrawn_.clear();
+  if (candidates)
   {
+    for (int b : *candidates)
+    {
+      if (levels_[b] >= 0)
+      {
+        nowDrawn_.push_back(b);
+      }
+    }
+  }
+  else
+  {
+    for (int b = 0; b < t.qt.blockCount(); ++b)
+    {
+      if (levels_[b] >= 0)
+      {
+        nowDrawn_.push_back(b);
+      }
+    }
+  }
+  auto visit = [&](int b) {
     const BlockConfig cfg = levels_[b] >= 0 ? blockConfigOf(t.qt, levels_, b) : notDrawn();
     if (levels_[b] >= 0)
     {
@@ -156,13 +178,9 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
         s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);
       }
     }
-    else
-    {
-      ++s.culledBlocks;
-    }
     if (sameConfig(cfg, drawnConfig_[b]))
     {
-      continue;
+      return;
     }
     changed = true;
     drawnConfig_[b] = cfg;
@@ -173,7 +191,20 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor)
       ++s.blocksRetessellated;
     }
     arena_.assign(b, blockScratch_.data(), blockScratch_.size());
+  };
+  for (int b : nowDrawn_)
+  {
+    visit(b);
   }
+  for (int b : drawnList_)
+  {
+    if (levels_[b] < 0)
+    {
+      visit(b); // no longer drawn: its slot is released
+    }
+  }
+  drawnList_.swap(nowDrawn_);
+  s.culledBlocks = t.qt.blockCount() - s.visibleBlocks;
   arena_.endFrame();
   if (changed)
   {

@@ -91,7 +91,8 @@ public:
   bool empty() const { return terrain_->qt.blockCount() == 0; }
 
 private:
-  const FrameStats& finishFrame(const std::vector<double>* factor);
+  // `candidates`: the only blocks that may have a level >= 0 this frame (null: any).
+  const FrameStats& finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates = nullptr);
 
   // Never null: an empty Terrain when there is no heightfield.
   std::shared_ptr<const Terrain> terrain_ = std::make_shared<const Terrain>();
@@ -99,6 +100,8 @@ private:
   double heightScale_ = 1.0;
 
   std::vector<uint8_t> visible_;
+  std::vector<int> visibleList_;
+  std::vector<int> drawnList_, nowDrawn_; // blocks drawn last frame / this frame
   std::vector<double> factor_;
   std::vector<int8_t> levels_;
   // Per block, the configuration it was last tessellated with (level -1 = not drawn), so a

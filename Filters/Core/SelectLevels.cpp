@@ -45,22 +45,23 @@ Overlap boxVsFrustum(const Box& box, const Frustum& fr)
   return inside ? Overlap::Inside : Overlap::Partial;
 }
 
-void markSubtree(const Quadtree& qt, int node, std::vector<uint8_t>& visible, int& count)
+void markSubtree(const Quadtree& qt, int node, std::vector<uint8_t>& visible, std::vector<int>& list)
 {
   const QuadtreeNode& n = qt.nodes[node];
   if (n.childCount == 0)
   {
     visible[n.block] = 1;
-    ++count;
+    list.push_back(n.block);
     return;
   }
   for (int k = 0; k < n.childCount; ++k)
   {
-    markSubtree(qt, n.firstChild + k, visible, count);
+    markSubtree(qt, n.firstChild + k, visible, list);
   }
 }
 
-void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8_t>& visible, int& count)
+void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8_t>& visible,
+  std::vector<int>& list)
 {
   const QuadtreeNode& n = qt.nodes[node];
   const Overlap o = boxVsFrustum(n.box, fr);
@@ -70,12 +71,12 @@ void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8
   }
   if (o == Overlap::Inside || n.childCount == 0)
   {
-    markSubtree(qt, node, visible, count); // fully inside: no more plane tests below
+    markSubtree(qt, node, visible, list); // fully inside: no more plane tests below
     return;
   }
   for (int k = 0; k < n.childCount; ++k)
   {
-    cullNode(qt, n.firstChild + k, fr, visible, count);
+    cullNode(qt, n.firstChild + k, fr, visible, list);
   }
 }
 
@@ -114,11 +115,11 @@ int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
 // Levels only decrease, so this ends; a neighbour at the block's level (or finer) removes
 // the coarse edge altogether.
 void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
-  std::vector<int8_t>& levels)
+  const std::vector<int>& drawn, std::vector<int8_t>& levels)
 {
   std::vector<int> work;
   std::vector<uint8_t> queued(levels.size(), 0);
-  for (int b = 0; b < qt.blockCount(); ++b)
+  for (int b : drawn)
   {
     if (levels[b] > 0 || (levels[b] == 0 && ringLevel(qt, b, 0)))
     {
@@ -169,46 +170,41 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
   }
 }
 
+// `drawn`: the blocks with levels[b] >= 0 (the others are -1).
 void selectWithBudgets(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& budget,
-  std::vector<int8_t>& levels)
+  const std::vector<int>& drawn, std::vector<int8_t>& levels)
 {
-  for (int b = 0; b < qt.blockCount(); ++b)
+  for (int b : drawn)
   {
-    if (levels[b] >= 0)
-    {
-      levels[b] = static_cast<int8_t>(coarsestWithin(table, b, blockTop(qt, b), budget[b]));
-    }
+    levels[b] = static_cast<int8_t>(coarsestWithin(table, b, blockTop(qt, b), budget[b]));
   }
-  fixStrips(qt, table, budget, levels);
+  fixStrips(qt, table, budget, drawn, levels);
 }
 
 } // namespace
 
-int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible)
+int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible,
+  std::vector<int>& list)
 {
   visible.assign(qt.blockCount(), 0);
-  int count = 0;
+  list.clear();
   if (!qt.nodes.empty())
   {
-    cullNode(qt, 0, frustum, visible, count);
+    cullNode(qt, 0, frustum, visible, list);
   }
-  return count;
+  return static_cast<int>(list.size());
 }
 
 void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& toWorld,
-  const std::vector<uint8_t>& visible, ErrorMetric metric, std::vector<double>& factor)
+  const std::vector<int>& visible, ErrorMetric metric, std::vector<double>& factor)
 {
   factor.assign(qt.blockCount(), 0.0);
   // World length of a unit stored-height error: height scale times the actor's z column.
   const double vertical = robustLength(glm::dvec3(toWorld[2]));
   const double ppu = pixelsPerUnit(view) * vertical;
   const CameraFrame cam = cameraFrameOf(view);
-  for (int b = 0; b < qt.blockCount(); ++b)
+  for (int b : visible)
   {
-    if (!visible[b])
-    {
-      continue;
-    }
     if (view.parallel)
     {
       factor[b] = visibleFactor(ppu); // orthographic: same scale at every depth
@@ -240,12 +236,12 @@ void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& t
   }
 }
 
-void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& factor,
-  double tau, std::vector<int8_t>& levels)
+void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
+  const std::vector<double>& factor, double tau, std::vector<int8_t>& levels)
 {
   std::vector<double> budget(qt.blockCount(), 0.0);
   levels.assign(qt.blockCount(), -1);
-  for (int b = 0; b < qt.blockCount(); ++b)
+  for (int b : visible)
   {
     if (factor[b] > 0.0)
     {
@@ -256,7 +252,7 @@ void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector
       budget[b] = std::isfinite(factor[b]) ? std::min(tau / factor[b], most) : 0.0;
     }
   }
-  selectWithBudgets(qt, table, budget, levels);
+  selectWithBudgets(qt, table, budget, visible, levels);
 }
 
 void selectLevelsForError(
@@ -264,7 +260,12 @@ void selectLevelsForError(
 {
   std::vector<double> budget(qt.blockCount(), maxError);
   levels.assign(qt.blockCount(), 0);
-  selectWithBudgets(qt, table, budget, levels);
+  std::vector<int> all(static_cast<std::size_t>(qt.blockCount()));
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    all[b] = b;
+  }
+  selectWithBudgets(qt, table, budget, all, levels);
 }
 
 double blockCertifiedError(

@@ -25,26 +25,28 @@ enum class ErrorMetric
   CenterDistance
 };
 
-// Marks blocks whose box intersects the frustum (1) or not (0), walking the quadtree with
-// early full-inside accept. The frustum is in the quadtree's frame (x, y, stored height):
-// transformPlanes(frustumOf(view), heightfieldToWorld(...)). Returns the number of visible
-// blocks.
-int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible);
+// Marks blocks whose box intersects the frustum (1) or not (0), and lists the visible ones
+// (quadtree order), walking the quadtree with early full-inside accept. The frustum is in
+// the quadtree's frame (x, y, stored height): transformPlanes(frustumOf(view),
+// heightfieldToWorld(...)). Returns the number of visible blocks. The per-frame steps
+// below work on the list, so their cost follows what is in view, not the DEM's size.
+int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible,
+  std::vector<int>& list);
 
-// Pixels per unit of stored-height error for each visible block (0 for culled blocks).
+// Pixels per unit of stored-height error for each listed (visible) block; 0 for the others.
 // `toWorld` maps the quadtree's frame to the view's world (heightfieldToWorld): each box's
 // corners are taken to world coordinates, where the bound is evaluated, and a vertical
 // error of 1 becomes a world displacement of |toWorld * (0, 0, 1, 0)|. Exact for any
 // affine toWorld: a non-uniform scale or shear moves both.
 void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& toWorld,
-  const std::vector<uint8_t>& visible, ErrorMetric metric, std::vector<double>& factor);
+  const std::vector<int>& visible, ErrorMetric metric, std::vector<double>& factor);
 
 // Chooses the coarsest level per visible block whose projected error is <= tau pixels, then
 // refines neighbours until every side strip joined to a coarser edge is within tau too.
 // levels[b] = -1 for culled blocks. tau must be finite and >= 0; any such tau works, DBL_MAX
 // included (the per-block budget tau / factor is clamped to a finite value).
-void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& factor,
-  double tau, std::vector<int8_t>& levels);
+void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
+  const std::vector<double>& factor, double tau, std::vector<int8_t>& levels);
 
 // View-independent selection: every block takes the coarsest level whose error (including
 // strips) is <= maxError metres (finite and >= 0).
