@@ -64,7 +64,7 @@ const FrameStats& Engine::update(const View& view, double tau)
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
   cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_, visibleList_);
   projectionFactors(t.qt, view, toWorld, visibleList_, metric_, factor_);
-  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_);
+  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
   return finishFrame(&factor_, &visibleList_);
 }
 

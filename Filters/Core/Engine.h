@@ -101,6 +101,7 @@ private:
 
   std::vector<uint8_t> visible_;
   std::vector<int> visibleList_;
+  SelectionScratch selectScratch_;
   std::vector<int> drawnList_, nowDrawn_; // blocks drawn last frame / this frame
   std::vector<double> factor_;
   std::vector<int8_t> levels_;

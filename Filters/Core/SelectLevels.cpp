@@ -115,10 +115,17 @@ int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
 // Levels only decrease, so this ends; a neighbour at the block's level (or finer) removes
 // the coarse edge altogether.
 void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
-  const std::vector<int>& drawn, std::vector<int8_t>& levels)
+  const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch)
 {
-  std::vector<int> work;
-  std::vector<uint8_t> queued(levels.size(), 0);
+  // Every entry of `queued` is back to 0 when the queue empties, so the scratch is only
+  // grown, never cleared: a frame touches what it queues, not the whole DEM.
+  std::vector<int>& work = scratch.work;
+  std::vector<uint8_t>& queued = scratch.queued;
+  work.clear();
+  if (queued.size() != levels.size())
+  {
+    queued.assign(levels.size(), 0);
+  }
   for (int b : drawn)
   {
     if (levels[b] > 0 || (levels[b] == 0 && ringLevel(qt, b, 0)))
@@ -172,13 +179,13 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
 
 // `drawn`: the blocks with levels[b] >= 0 (the others are -1).
 void selectWithBudgets(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& budget,
-  const std::vector<int>& drawn, std::vector<int8_t>& levels)
+  const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch)
 {
   for (int b : drawn)
   {
     levels[b] = static_cast<int8_t>(coarsestWithin(table, b, blockTop(qt, b), budget[b]));
   }
-  fixStrips(qt, table, budget, drawn, levels);
+  fixStrips(qt, table, budget, drawn, levels, scratch);
 }
 
 } // namespace
@@ -237,9 +244,12 @@ void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& t
 }
 
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
-  const std::vector<double>& factor, double tau, std::vector<int8_t>& levels)
+  const std::vector<double>& factor, double tau, std::vector<int8_t>& levels,
+  SelectionScratch& scratch)
 {
-  std::vector<double> budget(qt.blockCount(), 0.0);
+  // Budgets are read for drawn (listed) blocks only: the others keep stale values.
+  std::vector<double>& budget = scratch.budget;
+  budget.resize(static_cast<std::size_t>(qt.blockCount()));
   levels.assign(qt.blockCount(), -1);
   for (int b : visible)
   {
@@ -252,7 +262,7 @@ void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector
       budget[b] = std::isfinite(factor[b]) ? std::min(tau / factor[b], most) : 0.0;
     }
   }
-  selectWithBudgets(qt, table, budget, visible, levels);
+  selectWithBudgets(qt, table, budget, visible, levels, scratch);
 }
 
 void selectLevelsForError(
@@ -265,7 +275,8 @@ void selectLevelsForError(
   {
     all[b] = b;
   }
-  selectWithBudgets(qt, table, budget, all, levels);
+  SelectionScratch scratch;
+  selectWithBudgets(qt, table, budget, all, levels, scratch);
 }
 
 double blockCertifiedError(

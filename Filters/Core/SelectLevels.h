@@ -45,8 +45,18 @@ void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& t
 // refines neighbours until every side strip joined to a coarser edge is within tau too.
 // levels[b] = -1 for culled blocks. tau must be finite and >= 0; any such tau works, DBL_MAX
 // included (the per-block budget tau / factor is clamped to a finite value).
+// Buffers selectLevels reuses from frame to frame (a caller keeps one per engine), so that a
+// frame allocates and clears nothing the size of the DEM.
+struct SelectionScratch
+{
+  std::vector<double> budget;
+  std::vector<uint8_t> queued;
+  std::vector<int> work;
+};
+
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
-  const std::vector<double>& factor, double tau, std::vector<int8_t>& levels);
+  const std::vector<double>& factor, double tau, std::vector<int8_t>& levels,
+  SelectionScratch& scratch);
 
 // View-independent selection: every block takes the coarsest level whose error (including
 // strips) is <= maxError metres (finite and >= 0).
