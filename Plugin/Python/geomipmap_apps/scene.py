@@ -85,6 +85,12 @@ class Scene:
         self.window.SetOffScreenRendering(0 if on_screen else 1)
         self.grab = None
 
+    @classmethod
+    def from_args(cls, image, heights, args, **kw):
+        """A Scene with the rendering options of command.add_rendering_options."""
+        return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
+                   lighting=not args.no_lighting, size=args.size, **kw)
+
     def _colour(self, heights, spec):
         if spec == "elevation":
             ctf = vtkColorTransferFunction()
