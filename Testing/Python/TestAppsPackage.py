@@ -4,8 +4,9 @@
   (geomipmap_apps) nor argparse or matplotlib;
 - a whole geomipmap-fly flight, run in-process, loads none of the benchmark's modules
   (geomipmap_apps.bench: its measurement code) nor matplotlib;
-- both launchers answer --help with their own name.
-Usage: TestAppsPackage.py GEOMIPMAP_FLY GEOMIPMAP_BENCH SCRATCH_DIR
+- a geomipmap-view session (loading, a played event stream) loads none of them either;
+- every launcher answers --help with its own name.
+Usage: TestAppsPackage.py GEOMIPMAP_FLY GEOMIPMAP_BENCH GEOMIPMAP_VIEW SCRATCH_DIR
 """
 
 import json
@@ -14,7 +15,7 @@ import shutil
 import subprocess
 import sys
 
-fly_exe, bench_exe, scratch = sys.argv[1:4]
+fly_exe, bench_exe, view_exe, scratch = sys.argv[1:5]
 shutil.rmtree(scratch, ignore_errors=True)
 os.makedirs(scratch)
 failures = []
@@ -57,7 +58,22 @@ if bad:
     failures.append(f"a geomipmap-fly flight loads the benchmark's {bad}")
 print(f"geomipmap-fly flight: {len(fly)} modules, none of the benchmark's")
 
-for exe, name in ((fly_exe, "geomipmap-fly"), (bench_exe, "geomipmap-bench")):
+events = os.path.join(scratch, "events.log")
+with open(events, "w") as f:
+    f.write("# StreamVersion 1.1\nKeyPressEvent 10 10 0 43 1 plus\n")
+view = modules_after(
+    "import sys\nfrom geomipmap_apps.view import cli\n"
+    f"rc = cli.main(['--synthetic-size', '65', '--size', '64x64', '--play', {events!r}])\n"
+    "if rc: sys.exit(rc)")
+bad = loaded(view, ("geomipmap_apps.bench", "geomipmap_apps.fly", "matplotlib"))
+if "geomipmap_apps.view.viewer" not in view:
+    failures.append("the in-process viewer did not run")
+if bad:
+    failures.append(f"a geomipmap-view session loads {bad}")
+print(f"geomipmap-view session: {len(view)} modules, none of the other tools'")
+
+for exe, name in ((fly_exe, "geomipmap-fly"), (bench_exe, "geomipmap-bench"),
+                  (view_exe, "geomipmap-view")):
     p = subprocess.run([exe, "--help"], capture_output=True, text=True, timeout=60)
     if p.returncode != 0 or not p.stdout.startswith(f"usage: {name}"):
         failures.append(f"{name} --help: exit {p.returncode}, {p.stdout[:80]!r} {p.stderr!r}")

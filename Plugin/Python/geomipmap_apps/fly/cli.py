@@ -65,7 +65,7 @@ def build_parser():
                    help="vertical field of view in degrees (default 50)")
     g = command.add_rendering_options(p)
     g.add_argument("--interactive", action="store_true",
-                   help="on-screen window, then explore with a terrain interactor")
+                   help="on-screen window, then explore the terrain as in geomipmap-view")
     g = p.add_argument_group("output")
     g.add_argument("--out", default="geomipmap-flight", help="output folder "
                    "(default ./geomipmap-flight)")
@@ -170,8 +170,12 @@ def fly(args):
         where.append(movie.describe())
     text = report.summary(log.rows, args.tau, where)
     if args.interactive:
+        from ..view.viewer import Overlay, Viewer
+
         print(text)
-        view.interact()
+        explore = Viewer(view, image, Overlay(view.window), prog=PROG)
+        explore.initialize()
+        explore.start()
         return None
     return text
 
