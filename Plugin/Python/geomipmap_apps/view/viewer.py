@@ -42,8 +42,8 @@ KEYS = (
     (("h", "H", "question"), "help", "h  this help"),
     (("q", "Q", "Escape"), "quit", "q  quit"),
 )
-FLY_HELP = ("fly mode: Up / Down arrows or mouse wheel: forward / back; Left / Right: turn; "
-            "Page Up / Down: climb / descend; left drag: look; Shift: 5x faster")
+FLY_HELP = ("fly mode: Up / Down arrows or mouse wheel: forward / back; Left / Right: turn;\n"
+            "          Page Up / Down: climb / descend; left drag: look; Shift: 5x faster")
 ORBIT_HELP = "orbit mode: left drag: rotate; middle drag: pan; right drag: zoom"
 
 
