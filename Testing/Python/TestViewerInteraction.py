@@ -17,7 +17,8 @@ over the synthetic terrain, 513^2 at 640 x 360:
 - 'f': fly mode: Up moves along the view direction, a drag turns the view by 0.2 degrees a
   pixel with the eye fixed, Page Down stops at the clearance above the ground; 'f' again:
   orbit about the terrain point in the middle of the view;
-- 'g' (geomorphing) says it is not implemented and changes nothing;
+- 'g' (geomorphing) says it is not implemented and changes nothing; 'h' shows every key,
+  and Documentation/user-guide.md's key table lists every one;
 - looking away from the terrain (VTK then skips the mapper), the overlay says so and shows
   no stale figures;
 - a recorded session (cli.record) played back gives the same camera;
@@ -245,6 +246,11 @@ check("not implemented" in v.message and
 play(key("h"))
 check(all(doc in v.overlay.status.GetInput() for _, _, doc in viewer_module.KEYS),
       "'h': the help lists every key")
+with open(os.path.join(here, "..", "..", "Documentation", "user-guide.md")) as f:
+    guide = f.read()
+missing = [doc.split()[0] for _, _, doc in viewer_module.KEYS
+           if f"| `{doc.split()[0]}`" not in guide]
+check(not missing, f"the user guide's key table lists every key (missing {missing})")
 play(key("h"))
 
 # --- Terrain out of view: VTK skips the mapper, the overlay must not show stale figures ---
