@@ -12,25 +12,30 @@ for camera A (what the mapper drew there, TestGeoMipMapFilterAgreement): measure
 unfrozen, B's own LOD is drawn and measures within tau; a new input while frozen is
 selected for the current camera (there is nothing of it to keep).
 """
-import sys
 
 import numpy as np
-from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkPolyDataMapper, vtkRenderer
+from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkRenderer
 
 import geomipmap
 import refscene
-from gmmtestutil import check_drawn_within_tau
+from gmmtestutil import check_within_tau, lod_mesh
 
 W, H = 400, 300
 TAU, BLOCK = 1.0, 32
 check = refscene.Checks()
 
-src = geomipmap.vtkGeoMipMapFractalSource()
-src.SetDimensions(257, 257)
-src.SetSpacing(30.0)
-src.SetSeed(3)
-src.Update()
-image = src.GetOutput()
+
+
+def fractal(n, spacing, seed):
+    src = geomipmap.vtkGeoMipMapFractalSource()
+    src.SetDimensions(n, n)
+    src.SetSpacing(spacing)
+    src.SetSeed(seed)
+    src.Update()
+    return src.GetOutput()
+
+
+image = fractal(257, 30.0, 3)
 mapper = geomipmap.vtkGeoMipMapMapper()
 mapper.SetInputData(image)
 mapper.SetPixelError(TAU)
@@ -66,14 +71,7 @@ def use(cam):
 
 def filter_mesh(cam):
     """vtkGeoMipMapFilter's copy of what the mapper draws for `cam` (same tau, block, size)."""
-    f = geomipmap.vtkGeoMipMapFilter()
-    f.SetInputData(image)
-    f.SetCamera(cam)
-    f.SetViewportSize(W, H)
-    f.SetPixelError(TAU)
-    f.SetBlockSize(BLOCK)
-    f.Update()
-    return f.GetOutput()
+    return lod_mesh(image, cam, (W, H), TAU, BLOCK)
 
 
 def wireframe_of(actor_):
@@ -88,15 +86,6 @@ def wireframe_of(actor_):
     ren.RemoveAllViewProps()
     ren.AddActor(actor)
     return lines
-
-
-def stock_actor(mesh):
-    m = vtkPolyDataMapper()
-    m.SetInputData(mesh)
-    m.ScalarVisibilityOff()
-    a = vtkActor()
-    a.SetMapper(m)
-    return a
 
 
 # Live at A, then live at B: the two selections must differ for the test to mean anything.
@@ -133,8 +122,8 @@ mapper.SetPixelError(TAU)
 # The drawn lines are A's mesh, not B's: wireframes from B, pixel by pixel.
 frozen_lines = wireframe_of(actor)
 check(mapper.GetNumberOfRenderedTriangles() == tri_a, "frozen wireframe: still A's triangles")
-lines_a = wireframe_of(stock_actor(mesh_a))
-lines_b = wireframe_of(stock_actor(mesh_b))
+lines_a = wireframe_of(refscene.stock_actor(mesh_a))
+lines_b = wireframe_of(refscene.stock_actor(mesh_b))
 off_a = np.count_nonzero(frozen_lines ^ lines_a)  # pixels on in one drawing only
 off_b = np.count_nonzero(frozen_lines ^ lines_b)
 total = np.count_nonzero(frozen_lines)
@@ -152,20 +141,11 @@ win.Render()
 check(mapper.GetNumberOfRenderedTriangles() == mesh_b.GetNumberOfPolys(),
       f"unfrozen at B: {mapper.GetNumberOfRenderedTriangles()} triangles, filter "
       f"{mesh_b.GetNumberOfPolys()}")
-try:
-    check_drawn_within_tau(image, ren, actor, mapper, "unfrozen at B")
-    check(True, "unfrozen at B: measured within tau")
-except AssertionError as e:
-    check(False, str(e))
+check_within_tau(check, image, ren, actor, mapper, "unfrozen at B")
 
 # A new input while frozen: nothing of it to keep, so it is selected for B.
 mapper.FreezeLevelOfDetailOn()
-src2 = geomipmap.vtkGeoMipMapFractalSource()
-src2.SetDimensions(193, 193)
-src2.SetSpacing(40.0)
-src2.SetSeed(4)
-src2.Update()
-image = src2.GetOutput()
+image = fractal(193, 40.0, 4)
 mapper.SetInputData(image)
 win.Render()
 want = filter_mesh(cam_b).GetNumberOfPolys()

@@ -11,15 +11,11 @@ Usage: TestViewerBadInput.py GEOMIPMAP_VIEW SCRATCH_DIR
 import os
 import subprocess
 
-from flytestutil import check, run, setup
+from flytestutil import bad_dem_files, check, run, setup
 from gmmdata import optional_data_file
 
 exe, out = setup()
-garbage = os.path.join(out, "garbage.tif")
-with open(garbage, "wb") as f:
-    f.write(b"this is not a raster\n" * 10)
-empty = os.path.join(out, "empty.hgt")
-open(empty, "wb").close()
+garbage, empty = bad_dem_files(out)
 a_file = os.path.join(out, "a_file.txt")
 with open(a_file, "w") as f:
     f.write("not a folder\n")

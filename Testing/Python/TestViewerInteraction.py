@@ -29,7 +29,6 @@ over the synthetic terrain, 513^2 at 640 x 360:
 GEOMIPMAP_WRITE_BASELINE=1 writes the baseline instead (look at it before committing it).
 Usage: TestViewerInteraction.py GEOMIPMAP_VIEW SCRATCH_DIR
 """
-import io
 import math
 import os
 import shutil
@@ -42,8 +41,8 @@ from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import refscene
-from gmmtestutil import check_drawn_within_tau
-from viewtestutil import drag, key, keys, stream
+from gmmtestutil import check_within_tau
+from viewtestutil import drag, key, keys, open_viewer_recording, stream
 
 from geomipmap_apps.view import cli, viewer as viewer_module
 
@@ -66,31 +65,15 @@ def read_png(name):
 
 
 # --- Loading, with what the window showed recorded -------------------------------------
-shown = []
-show_loading = viewer_module.Overlay.show_loading
-
-
-def recording_show(self, text):
-    shown.append(text)
-    show_loading(self, text)
-
-
-viewer_module.Overlay.show_loading = recording_show
-terminal = io.StringIO()
 said = []
-argv = ["--synthetic-size", "513", "--size", f"{W}x{H}", "--block-size", "32",
-        "--screenshot-dir", scratch]
-args = cli.build_parser().parse_args(argv)
-cli.check(args)
-v = cli.open_viewer(args, stream=terminal, say=said.append)
-viewer_module.Overlay.show_loading = show_loading
-print("window showed while loading:", shown)
-print("terminal:", terminal.getvalue().replace("\n", " | "))
+v, shown, terminal = open_viewer_recording(
+    ["--synthetic-size", "513", "--size", f"{W}x{H}", "--block-size", "32",
+     "--screenshot-dir", scratch], say=said.append)
 for stage in ("generating terrain", "error tables"):
     texts = [t for t in shown if stage in t]
     check(len(texts) >= 2 and texts[-1].endswith("100 %"),
           f"the window showed the {stage} stage from its start to 100 % ({texts})")
-    check(f"geomipmap-view: {stage} 100 %" in terminal.getvalue(),
+    check(f"geomipmap-view: {stage} 100 %" in terminal,
           f"the terminal got the {stage} stage's progress")
 check(not v.overlay.loading.GetVisibility(), "the loading text is gone once loaded")
 mapper, cam = v.mapper, v.camera
@@ -162,11 +145,7 @@ play(key("l"))
 check(not mapper.GetFreezeLevelOfDetail() and mapper.GetNumberOfRenderedTriangles() != tri0,
       f"'l' again: live, this view's LOD ({mapper.GetNumberOfRenderedTriangles()} "
       f"triangles, frozen had {tri0})")
-try:
-    check_drawn_within_tau(v.image, v.renderer, v.actor, mapper, "unfrozen")
-    check(True, "unfrozen: measured within tau")
-except AssertionError as e:
-    check(False, str(e))
+check_within_tau(check, v.image, v.renderer, v.actor, mapper, "unfrozen")
 stats_in_overlay("after unfreezing")
 
 # --- Overlay drawn, and the 'o' key ----------------------------------------------------
@@ -286,11 +265,7 @@ v.window.SwapBuffersOff()  # read the frame back before any swap (see Viewer.scr
 v.window.Render()
 v.scene.capture()
 v.window.SwapBuffersOn()
-try:
-    check_drawn_within_tau(v.image, v.renderer, v.actor, mapper, "final frame")
-    check(True, "final frame: measured within tau")
-except AssertionError as e:
-    check(False, str(e))
+check_within_tau(check, v.image, v.renderer, v.actor, mapper, "final frame")
 if os.environ.get("GEOMIPMAP_WRITE_BASELINE"):
     v.scene.write_png(baseline)
     print("wrote", baseline)

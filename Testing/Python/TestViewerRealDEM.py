@@ -12,7 +12,6 @@ touches a void is drawn by no triangle; 17 of them in view here).
 Missing data skips (or fails under GEOMIPMAP_REQUIRE_DATA=1).
 Usage: TestViewerRealDEM.py SCRATCH_DIR
 """
-import io
 import os
 import re
 import shutil
@@ -22,10 +21,10 @@ os.environ["GEOMIPMAP_CACHE_DIR"] = "off"  # the tables are built, with progress
 
 import refscene  # noqa: E402
 from gmmdata import data_file  # noqa: E402
-from gmmtestutil import check_drawn_within_tau  # noqa: E402
-from viewtestutil import drag, key, keys, stream  # noqa: E402
+from gmmtestutil import check_within_tau  # noqa: E402
+from viewtestutil import drag, key, keys, open_viewer_recording, stream  # noqa: E402
 
-from geomipmap_apps.view import cli, viewer as viewer_module  # noqa: E402
+from geomipmap_apps.view import cli  # noqa: E402
 
 dem = data_file("N48W125.hgt")
 scratch = sys.argv[1]
@@ -33,26 +32,11 @@ shutil.rmtree(scratch, ignore_errors=True)
 os.makedirs(scratch)
 check = refscene.Checks()
 
-shown = []
-show_loading = viewer_module.Overlay.show_loading
-
-
-def recording_show(self, text):
-    shown.append(text)
-    show_loading(self, text)
-
-
-viewer_module.Overlay.show_loading = recording_show
-terminal = io.StringIO()
-args = cli.build_parser().parse_args([dem, "--size", "640x360", "--screenshot-dir", scratch])
-cli.check(args)
-v = cli.open_viewer(args, stream=terminal, say=print)
-viewer_module.Overlay.show_loading = show_loading
-print("window showed while loading:", shown)
-print("terminal:", terminal.getvalue().replace("\n", " | "))
+v, shown, terminal = open_viewer_recording(
+    [dem, "--size", "640x360", "--screenshot-dir", scratch], say=print)
 for stage in ("reading DEM", "error tables"):
     percents = [int(m) for t in shown for m in re.findall(stage + r" +(\d+) %", t)]
-    lines = re.findall(r"geomipmap-view: " + stage + r" +(\d+) %", terminal.getvalue())
+    lines = re.findall(r"geomipmap-view: " + stage + r" +(\d+) %", terminal)
     check(any(0 < p < 100 for p in percents) and percents[-1] == 100,
           f"{stage}: the window showed progress between 0 and 100 % ({percents})")
     check(any(0 < int(p) < 100 for p in lines) and lines[-1] == "100",
@@ -64,10 +48,6 @@ check(mapper.GetPixelError() == 2.0, f"'+': tau {mapper.GetPixelError()}")
 cli.play(v, stream(key("f"), keys("Up", "Up"), drag(320, 180, 340, 190), key("f")))
 check(v.mode == "orbit" and mapper.GetNumberOfRenderedTriangles() > 0,
       f"fly and back: {mapper.GetNumberOfRenderedTriangles()} triangles")
-try:
-    check_drawn_within_tau(v.image, v.renderer, v.actor, mapper, "N48W125 final frame",
-                           uncovered_ok=True)
-    check(True, "N48W125: measured within tau")
-except AssertionError as e:
-    check(False, str(e))
+check_within_tau(check, v.image, v.renderer, v.actor, mapper, "N48W125 final frame",
+                 uncovered_ok=True)
 check.exit()

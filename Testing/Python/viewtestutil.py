@@ -1,4 +1,5 @@
-"""Event streams for the geomipmap-view tests, in vtkInteractorEventRecorder's format.
+"""Event streams for the geomipmap-view tests, in vtkInteractorEventRecorder's format,
+and the viewer opened with what it shows while loading recorded.
 
 Why: the viewer is tested the way VTK tests interaction, with recorded events played on
 the window's interactor; writing the streams from a few builders (a key, a drag) keeps
@@ -37,3 +38,30 @@ def drag(x0, y0, x1, y1, steps=8, button="Left"):
 
 def stream(*parts):
     return HEADER + "".join(parts)
+
+
+def open_viewer_recording(argv, say=None):
+    """Runs geomipmap-view's own loading (cli.open_viewer) for the command line `argv`;
+    returns (viewer, the texts the window rendered while loading, the terminal's text)."""
+    import io
+
+    from geomipmap_apps.view import cli, viewer
+
+    shown = []
+    show_loading = viewer.Overlay.show_loading
+
+    def recording_show(self, text):
+        shown.append(text)
+        show_loading(self, text)
+
+    viewer.Overlay.show_loading = recording_show
+    terminal = io.StringIO()
+    try:
+        args = cli.build_parser().parse_args(argv)
+        cli.check(args)
+        v = cli.open_viewer(args, stream=terminal, say=say)
+    finally:
+        viewer.Overlay.show_loading = show_loading
+    print("window showed while loading:", shown)
+    print("terminal:", terminal.getvalue().replace("\n", " | "))
+    return v, shown, terminal.getvalue()

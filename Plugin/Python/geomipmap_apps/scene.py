@@ -20,7 +20,6 @@ from vtkmodules.vtkRenderingCore import (
     vtkWindowToImageFilter,
 )
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (OpenGL factory overrides)
-import vtkmodules.vtkInteractionStyle  # noqa: F401
 
 from .errors import AppError, VTKMessages
 
