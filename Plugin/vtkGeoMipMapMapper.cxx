@@ -78,6 +78,9 @@ struct vtkGeoMipMapMapper::Internals
   vtkNew<vtkMatrix4x4> AnchorShift;
   vtkNew<vtkMatrix4x4> Temp;
 
+  // The engine holds a selection of the current terrain (what FreezeLevelOfDetail keeps).
+  bool HasSelection = false;
+
   std::vector<unsigned int> Lines; // scratch for wireframe edges
   size_t IndexBytes = 0;
   // The index buffer holds the engine's arena as of this version (0: it does not).
@@ -151,6 +154,15 @@ void vtkGeoMipMapMapper::SetPixelError(double tau)
   }
 }
 
+void vtkGeoMipMapMapper::SetFreezeLevelOfDetail(bool freeze)
+{
+  if (freeze != this->FreezeLevelOfDetail)
+  {
+    this->FreezeLevelOfDetail = freeze;
+    this->ModifiedIndicesOnly();
+  }
+}
+
 int vtkGeoMipMapMapper::GetMinimumBlockSize()
 {
   return gmm::kMinBlockQuads;
@@ -196,7 +208,7 @@ double vtkGeoMipMapMapper::GetMaximumGeometricError() const
 }
 bool vtkGeoMipMapMapper::GetIndicesReused() const
 {
-  return this->LastFrameDrawn ? this->Internal->Engine.stats().reused : false;
+  return this->LastFrameDrawn && (this->LastFrameFrozen || this->Internal->Engine.stats().reused);
 }
 
 vtkTypeInt64 vtkGeoMipMapMapper::GetGPUMemoryBytes() const
@@ -243,6 +255,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   {
     in.Terrain = nullptr;
     in.Engine.setTerrain(nullptr);
+    in.HasSelection = false;
     vtkErrorMacro("Cannot use the input image: " << err);
     return false;
   }
@@ -250,6 +263,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   {
     in.Terrain = terrain;
     in.Engine.setTerrain(terrain->GetTerrain());
+    in.HasSelection = false; // a frozen selection belongs to the old terrain
     this->LastTerrainBuildTime = terrain->GetBuildTime();
     this->LastTablesFromCache = terrain->GetTableCacheReport().hit;
     this->IndicesDirty = true;
@@ -372,7 +386,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
 
   // Until the engine has run for this frame, the statistics say "nothing drawn" (an
   // input or camera error below must not leave the previous frame's figures behind).
-  this->LastFrameDrawn = false;
+  this->LastFrameDrawn = this->LastFrameFrozen = false;
   this->LastUpdateTime = this->LastIndexUploadTime = 0.0;
   this->LastIndexUploadBytes = 0;
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
@@ -403,16 +417,23 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("Cannot use the camera: " << err);
     return;
   }
-  const auto start = Clock::now();
-  const gmm::FrameStats& stats = in.Engine.update(view, this->PixelError);
-  this->LastUpdateTime = SecondsSince(start);
-  if (!in.Engine.lastError().empty())
+  // A frozen LOD keeps the engine's last selection (indices and statistics) as it is.
+  this->LastFrameFrozen = this->FreezeLevelOfDetail && in.HasSelection;
+  if (!this->LastFrameFrozen)
   {
-    vtkErrorMacro("LOD update failed: " << in.Engine.lastError());
-    return;
+    const auto start = Clock::now();
+    in.Engine.update(view, this->PixelError);
+    this->LastUpdateTime = SecondsSince(start);
+    in.HasSelection = in.Engine.lastError().empty();
+    if (!in.HasSelection)
+    {
+      vtkErrorMacro("LOD update failed: " << in.Engine.lastError());
+      return;
+    }
   }
+  const gmm::FrameStats& stats = in.Engine.stats();
   this->LastFrameDrawn = true;
-  this->IndicesDirty = this->IndicesDirty || !stats.reused;
+  this->IndicesDirty = this->IndicesDirty || !this->GetIndicesReused();
   if (stats.triangles == 0)
   {
     return;
@@ -840,6 +861,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
+  os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "NumberOfRenderedTriangles: " << this->GetNumberOfRenderedTriangles() << "\n";
   os << indent << "NumberOfVisibleBlocks: " << this->GetNumberOfVisibleBlocks() << "\n";
   os << indent << "NumberOfCulledBlocks: " << this->GetNumberOfCulledBlocks() << "\n";

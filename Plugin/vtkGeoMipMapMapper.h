@@ -151,6 +151,21 @@ public:
 
   ///@{
   /**
+   * Freezes the level of detail, to inspect it from another viewpoint: while on, a render
+   * draws the triangles the engine selected last, for the camera of that frame, instead of
+   * selecting new ones for the current camera (no index upload, LastUpdateTime 0,
+   * IndicesReused true). The statistics keep describing that selection: its certified
+   * error holds for the camera it was selected for, not for the current one. PixelError
+   * changes wait until it is off again. A render with nothing to keep (the first one, or
+   * after a new input or BlockSize) still selects, for its own camera. Off by default.
+   */
+  void SetFreezeLevelOfDetail(bool freeze);
+  vtkGetMacro(FreezeLevelOfDetail, bool);
+  vtkBooleanMacro(FreezeLevelOfDetail, bool);
+  ///@}
+
+  ///@{
+  /**
    * Statistics of the last rendered frame (the last renderer that drew this mapper).
    * LastUpdateTime is the LOD work (cull, select, tessellate) in seconds;
    * MaximumScreenSpaceError is the engine's certified bound in pixels and
@@ -289,6 +304,8 @@ protected:
   double LastTerrainBuildTime = 0.0;
   bool LastTablesFromCache = false;
   bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
+  bool FreezeLevelOfDetail = false;
+  bool LastFrameFrozen = false; // the last RenderPiece kept the frozen selection
   vtkMTimeType IndicesOnlyMTime = 0;
   bool IndicesDirty = true;
 

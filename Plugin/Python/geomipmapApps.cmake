@@ -1,4 +1,4 @@
-# The command-line tools (geomipmap-fly, geomipmap-bench) and their one Python package,
+# The command-line tools (geomipmap-fly, geomipmap-bench, geomipmap-view) and their one Python package,
 # geomipmap_apps (Plugin/Python/geomipmap_apps): shared terrain loading, scene set-up,
 # errors and command-line handling at its top level, one subpackage per tool; the camera
 # paths are the geomipmap package's (geomipmap.flight, CMake/geomipmapVTK.cmake). A tool is a subpackage with a cli.main
@@ -23,7 +23,12 @@ geomipmap_add_python_files(
   geomipmap_apps/bench/measure.py
   geomipmap_apps/bench/meshes.py
   geomipmap_apps/bench/report.py
-  geomipmap_apps/bench/run.py)
+  geomipmap_apps/bench/run.py
+  geomipmap_apps/view/__init__.py
+  geomipmap_apps/view/__main__.py
+  geomipmap_apps/view/cli.py
+  geomipmap_apps/view/progress.py
+  geomipmap_apps/view/viewer.py)
 # Build trees configured before the tools shared one package hold the old top-level
 # packages; a stale copy would let an import of them pass in the tests.
 file(REMOVE_RECURSE "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/geomipmap_fly"
@@ -32,7 +37,7 @@ file(REMOVE_RECURSE "${GEOMIPMAP_PYTHON_PACKAGE_PARENT}/geomipmap_fly"
 # The launchers find the packages relative to themselves: same relative path in both trees.
 file(RELATIVE_PATH GEOMIPMAP_APPS_PYTHON_DIR "/prefix/${CMAKE_INSTALL_BINDIR}"
   "/prefix/${GEOMIPMAP_PYTHON_DESTINATION}")
-foreach(_app IN ITEMS fly bench)
+foreach(_app IN ITEMS fly bench view)
   string(TOUPPER "${_app}" _APP)
   set(GEOMIPMAP_APP "${_app}")
   set(GEOMIPMAP_${_APP}_EXECUTABLE "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_BINDIR}/geomipmap-${_app}"

@@ -4,8 +4,9 @@
   (geomipmap_apps) nor argparse or matplotlib;
 - a whole geomipmap-fly flight, run in-process, loads none of the benchmark's modules
   (geomipmap_apps.bench: its measurement code) nor matplotlib;
-- both launchers answer --help with their own name.
-Usage: TestAppsPackage.py GEOMIPMAP_FLY GEOMIPMAP_BENCH SCRATCH_DIR
+- a geomipmap-view session (loading, a played event stream) loads none of them either;
+- every launcher answers --help with its own name.
+Usage: TestAppsPackage.py GEOMIPMAP_FLY GEOMIPMAP_BENCH GEOMIPMAP_VIEW SCRATCH_DIR
 """
 
 import json
@@ -14,7 +15,7 @@ import shutil
 import subprocess
 import sys
 
-fly_exe, bench_exe, scratch = sys.argv[1:4]
+fly_exe, bench_exe, view_exe, scratch = sys.argv[1:5]
 shutil.rmtree(scratch, ignore_errors=True)
 os.makedirs(scratch)
 failures = []
@@ -36,13 +37,19 @@ def loaded(modules, prefixes):
             or any(m.startswith(p + ".") for p in prefixes)]
 
 
+def boundary(what, modules, ran, forbidden):
+    """Records a failure when `what` did not run (ran False) or loaded a `forbidden` module."""
+    bad = loaded(modules, forbidden)
+    if not ran:
+        failures.append(f"{what} did not run")
+    if bad:
+        failures.append(f"{what} loads {bad}")
+    print(f"{what}: {len(modules)} modules, none of {', '.join(forbidden)}")
+
+
 product = modules_after("import geomipmap, geomipmap.flight")
-bad = loaded(product, ("geomipmap_apps", "argparse", "matplotlib"))
-if "geomipmap.flight" not in product:
-    failures.append("geomipmap.flight was not imported")
-if bad:
-    failures.append(f"import geomipmap.flight loads {bad}")
-print(f"geomipmap.flight: {len(product)} modules, none of the tools'")
+boundary("import geomipmap.flight", product, "geomipmap.flight" in product,
+         ("geomipmap_apps", "argparse", "matplotlib"))
 
 out = os.path.join(scratch, "flight")
 fly = modules_after(
@@ -50,14 +57,21 @@ fly = modules_after(
     f"rc = cli.main(['--synthetic-size', '65', '--frames', '2', '--size', '64x64', "
     f"'--out', {out!r}])\n"
     "if rc: sys.exit(rc)")
-bad = loaded(fly, ("geomipmap_apps.bench", "matplotlib"))
-if "geomipmap_apps.fly.cli" not in fly or not os.path.isfile(os.path.join(out, "flight.csv")):
-    failures.append("the in-process flight did not run")
-if bad:
-    failures.append(f"a geomipmap-fly flight loads the benchmark's {bad}")
-print(f"geomipmap-fly flight: {len(fly)} modules, none of the benchmark's")
+boundary("a geomipmap-fly flight", fly, "geomipmap_apps.fly.cli" in fly and
+         os.path.isfile(os.path.join(out, "flight.csv")), ("geomipmap_apps.bench", "matplotlib"))
 
-for exe, name in ((fly_exe, "geomipmap-fly"), (bench_exe, "geomipmap-bench")):
+events = os.path.join(scratch, "events.log")
+with open(events, "w") as f:
+    f.write("# StreamVersion 1.1\nKeyPressEvent 10 10 0 43 1 plus\n")
+view = modules_after(
+    "import sys\nfrom geomipmap_apps.view import cli\n"
+    f"rc = cli.main(['--synthetic-size', '65', '--size', '64x64', '--play', {events!r}])\n"
+    "if rc: sys.exit(rc)")
+boundary("a geomipmap-view session", view, "geomipmap_apps.view.viewer" in view,
+         ("geomipmap_apps.bench", "geomipmap_apps.fly", "matplotlib"))
+
+for exe, name in ((fly_exe, "geomipmap-fly"), (bench_exe, "geomipmap-bench"),
+                  (view_exe, "geomipmap-view")):
     p = subprocess.run([exe, "--help"], capture_output=True, text=True, timeout=60)
     if p.returncode != 0 or not p.stdout.startswith(f"usage: {name}"):
         failures.append(f"{name} --help: exit {p.returncode}, {p.stdout[:80]!r} {p.stderr!r}")

@@ -11,16 +11,12 @@ command (those that used to end in an internal error).
 
 import os
 
-from flytestutil import check, run, setup
+from flytestutil import bad_dem_files, check, run, setup
 from gmmdata import optional_data_file
 from waypointcases import BAD, THROUGH_COMMAND, write
 
 exe, out = setup()
-garbage = os.path.join(out, "garbage.tif")
-with open(garbage, "wb") as f:
-    f.write(b"this is not a raster\n" * 10)
-empty = os.path.join(out, "empty.hgt")
-open(empty, "wb").close()
+garbage, empty = bad_dem_files(out)
 outside = os.path.join(out, "outside.csv")
 with open(outside, "w") as f:
     f.write("x,y,agl\n100,100,50\n1e7,100,50\n")

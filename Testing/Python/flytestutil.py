@@ -25,6 +25,16 @@ def setup():
     return exe, scratch
 
 
+def bad_dem_files(folder):
+    """Writes two DEM files no reader takes into `folder`: (garbage.tif, empty.hgt)."""
+    garbage = os.path.join(folder, "garbage.tif")
+    with open(garbage, "wb") as f:
+        f.write(b"this is not a raster\n" * 10)
+    empty = os.path.join(folder, "empty.hgt")
+    open(empty, "wb").close()
+    return garbage, empty
+
+
 def run(exe, *args, timeout=240):
     """Run geomipmap-fly; return (rc, stdout, stderr)."""
     p = subprocess.run([exe, *args], capture_output=True, text=True, timeout=timeout)

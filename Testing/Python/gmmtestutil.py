@@ -70,6 +70,23 @@ class Measured:
                                   self.uncovered))
 
 
+def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0):
+    """vtkGeoMipMapFilter's triangles for this camera, viewport size (w, h), tau, block
+    size, actor matrix (None: identity) and height scale: what the mapper draws with them."""
+    import geomipmap
+
+    filt = geomipmap.vtkGeoMipMapFilter()
+    filt.SetInputData(image)
+    filt.SetCamera(camera)
+    filt.SetModelMatrix(matrix)
+    filt.SetViewportSize(*size)
+    filt.SetPixelError(tau)
+    filt.SetBlockSize(block_size)
+    filt.SetHeightScale(height_scale)
+    filt.Update()
+    return filt.GetOutput()
+
+
 def measure_drawn(image, ren, actor, tau, block_size):
     """Measures the last frame `ren` drew of `actor` (a vtkGeoMipMapMapper over `image` with
     this tau and block size): see the comment above. Call it right after the render."""
@@ -80,16 +97,7 @@ def measure_drawn(image, ren, actor, tau, block_size):
     matrix = None if actor.GetIsIdentity() else matrix
     w, h = ren.GetSize()
     height_scale = actor.GetMapper().GetHeightScale()
-    filt = geomipmap.vtkGeoMipMapFilter()
-    filt.SetInputData(image)
-    filt.SetCamera(ren.GetActiveCamera())
-    filt.SetModelMatrix(matrix)
-    filt.SetViewportSize(w, h)
-    filt.SetPixelError(tau)
-    filt.SetBlockSize(block_size)
-    filt.SetHeightScale(height_scale)
-    filt.Update()
-    mesh = filt.GetOutput()
+    mesh = lod_mesh(image, ren.GetActiveCamera(), (w, h), tau, block_size, matrix, height_scale)
     clip = vtkMatrix4x4()
     clip.DeepCopy(ren.GetActiveCamera().GetCompositeProjectionTransformMatrix(
         ren.GetTiledAspectRatio(), -1, 1))
@@ -127,6 +135,16 @@ def check_drawn_within_tau(image, ren, actor, mapper, what="", uncovered_ok=Fals
     if not uncovered_ok and m.uncovered:
         raise AssertionError("%s: %d in-view samples not covered" % (what, m.uncovered))
     return m
+
+
+def check_within_tau(check, image, ren, actor, mapper, what, uncovered_ok=False):
+    """check_drawn_within_tau reported through `check` (a refscene.Checks): one line, ok or
+    FAIL with the reason, instead of an exception."""
+    try:
+        check_drawn_within_tau(image, ren, actor, mapper, what, uncovered_ok)
+        check(True, f"{what}: measured within tau")
+    except AssertionError as e:
+        check(False, str(e))
 
 
 def resampling_mismatch(img, src, lon0, lat0, step_deg, nodes=20000, seed=5):

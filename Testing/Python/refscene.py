@@ -84,13 +84,18 @@ def reference_mesh(image, normals=True):
     return n.GetOutput()
 
 
-def reference_actor(image):
+def stock_actor(mesh):
+    """`mesh` (a vtkPolyData) in a stock vtkPolyDataMapper, one colour."""
     mapper = vtkPolyDataMapper()
-    mapper.SetInputData(reference_mesh(image))
+    mapper.SetInputData(mesh)
     mapper.ScalarVisibilityOff()
     actor = vtkActor()
     actor.SetMapper(mapper)
     return actor
+
+
+def reference_actor(image):
+    return stock_actor(reference_mesh(image))
 
 
 def window(width, height, renderer=None):

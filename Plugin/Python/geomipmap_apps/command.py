@@ -1,5 +1,6 @@
-"""What every geomipmap tool's command line shares: argument types, one-line errors and
-exit statuses.
+"""What every geomipmap tool's command line shares: argument types, the terrain and
+rendering options (geomipmap-fly and geomipmap-view take the same ones), one-line errors
+and exit statuses.
 
 Why: a tool must fail with one readable line, never a traceback or argparse's usage dump,
 and the same failure must end the same way in every tool: "PROG: error: ..." on stderr
@@ -45,6 +46,76 @@ def window_size(text):
     if not (16 <= w <= 16384 and 16 <= h <= 16384):
         raise argparse.ArgumentTypeError(f"width and height must be 16..16384, got {text}")
     return (w, h)
+
+
+def min_block_size():
+    """The engine's one minimum block size (gmm::kMinBlockQuads), as the mapper states it."""
+    from geomipmap import vtkGeoMipMapMapper
+
+    return vtkGeoMipMapMapper.GetMinimumBlockSize()
+
+
+def colour(text):
+    """Argument type: 'elevation' or 'texture:FILE.png'."""
+    if text == "elevation" or (text.startswith("texture:") and len(text) > 8):
+        return text
+    raise argparse.ArgumentTypeError(f"expected 'elevation' or 'texture:FILE.png', got {text!r}")
+
+
+def add_terrain_options(parser, dem_positional=False):
+    """The terrain options (DEM or synthetic terrain): the DEM is an optional positional
+    argument when dem_positional, else --dem. Read by terrain.load_terrain_for(args)."""
+    g = parser.add_argument_group("terrain")
+    dem_help = ("any format the vtkGeoMipMapTerrainReader reads (GeoTIFF, SRTM .hgt, "
+                "USGS .dem, ESRI .asc, 16-bit or float image heightmaps, terrain-RGB "
+                "PNG); default: synthetic terrain")
+    if dem_positional:
+        g.add_argument("dem", nargs="?", metavar="DEM", help="the DEM to show: " + dem_help)
+    else:
+        g.add_argument("--dem", metavar="FILE", help="DEM to fly over: " + dem_help)
+    g.add_argument("--height-scale", type=positive(float), default=1.0,
+                   help="metres per stored height unit (default 1)")
+    g.add_argument("--spacing", type=positive(float), default=None,
+                   help="sample spacing in metres for images without georeference "
+                   "(and the synthetic terrain, default 30)")
+    g.add_argument("--terrain-rgb", action="store_true", help="decode an RGB PNG as terrain-RGB")
+    g.add_argument("--synthetic-size", type=positive(int, 2, strict=False), default=1025,
+                   help="synthetic terrain samples per side (default 1025)")
+    g.add_argument("--seed", type=positive(int, 0, strict=False), default=1,
+                   help="synthetic terrain seed (default 1)")
+    return g
+
+
+def add_rendering_options(parser, size=(1280, 720)):
+    """The rendering options: --tau, --block-size, --size, --color, --no-lighting (read by
+    scene.Scene.from_args); returns the group so that a tool can add its own."""
+    g = parser.add_argument_group("rendering")
+    g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
+                   help="pixel error bound (default 1)")
+    g.add_argument("--block-size", type=int, default=64,
+                   help=f"block size in quads, a power of two {min_block_size()}..1024 "
+                   "(default 64)")
+    g.add_argument("--size", type=window_size, default=size,
+                   help=f"window WxH (default {size[0]}x{size[1]})")
+    g.add_argument("--color", type=colour, default="elevation",
+                   help="'elevation' (default) or 'texture:FILE.png' (draped over the extent)")
+    g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
+    return g
+
+
+def check_common(args):
+    """Checks of the shared options argparse cannot express, and the X display VTK needs."""
+    b, least = args.block_size, min_block_size()
+    if b < least or b > 1024 or b & (b - 1):
+        raise AppError(f"--block-size must be a power of two in {least}..1024, got {b}")
+    if args.dem and not os.path.isfile(args.dem):
+        raise AppError(f"DEM file not found: {args.dem}")
+    texture = args.color.split(":", 1)[1] if args.color.startswith("texture:") else None
+    if texture and not os.path.isfile(texture):
+        raise AppError(f"texture image not found: {texture}")
+    if not os.environ.get("DISPLAY"):
+        raise AppError("no X display (DISPLAY is unset): VTK here renders through X; "
+                       "run under xvfb-run -a")
 
 
 def _bad_input():

@@ -20,7 +20,6 @@ from vtkmodules.vtkRenderingCore import (
     vtkWindowToImageFilter,
 )
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (OpenGL factory overrides)
-import vtkmodules.vtkInteractionStyle  # noqa: F401
 
 from .errors import AppError, VTKMessages
 
@@ -43,13 +42,15 @@ class Scene:
     block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
     "texture:FILE.png" (draped over the extent). size: the window's (width, height).
     on_screen: a window on the display instead of off-screen rendering. title: the
-    window's name. messages: VTKMessages for errors (texture reading). The camera is
-    the renderer's active one; a geomipmap.flight path drives it (apply(renderer, frame)).
+    window's name. messages: VTKMessages for errors (texture reading). window: a render
+    window to add the terrain renderer to (one that showed loading progress), else a new
+    one. The camera is the renderer's active one; a geomipmap.flight path drives it
+    (apply(renderer, frame)).
     """
 
     def __init__(self, image, heights, block_size=64, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
-                 messages=None):
+                 messages=None, window=None):
         import geomipmap
 
         self.messages = messages or VTKMessages()
@@ -77,13 +78,19 @@ class Scene:
         if lighting:
             self._sun()
 
-        self.window = vtkRenderWindow()
+        self.window = window or vtkRenderWindow()
         self.window.SetSize(*size)
         self.window.AddRenderer(self.renderer)
         self.window.SetWindowName(title)
         self.window.SetMultiSamples(0)
         self.window.SetOffScreenRendering(0 if on_screen else 1)
         self.grab = None
+
+    @classmethod
+    def from_args(cls, image, heights, args, **kw):
+        """A Scene with the rendering options of command.add_rendering_options."""
+        return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
+                   lighting=not args.no_lighting, size=args.size, **kw)
 
     def _colour(self, heights, spec):
         if spec == "elevation":
@@ -163,15 +170,3 @@ class Scene:
         """Write the frame captured last (capture()) as PNG."""
         self.png.SetFileName(filename)
         self.png.Write()
-
-    def interact(self):
-        """Hand the window to the user with a terrain interactor (after the flight)."""
-        from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTerrain
-        from vtkmodules.vtkRenderingCore import vtkRenderWindowInteractor
-
-        iren = vtkRenderWindowInteractor()
-        iren.SetRenderWindow(self.window)
-        iren.SetInteractorStyle(vtkInteractorStyleTerrain())
-        iren.Initialize()
-        self.window.Render()
-        iren.Start()

@@ -8,18 +8,20 @@ then the flight API's (geomipmap.flight.Heights).
 import os
 
 import numpy as np
+from vtkmodules.vtkCommonCore import vtkCommand
 
 from .errors import AppError, VTKMessages
 
 
 def load_terrain(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
-                 synthetic_size=1025, seed=1, messages=None):
+                 synthetic_size=1025, seed=1, messages=None, progress=None):
     """Run the reader on `dem`, or the fractal source when dem is None; return
     (vtkImageData, geomipmap.flight.Heights).
 
     spacing: metres between samples for images without georeference (synthetic terrain:
     default 30). synthetic_size, seed: the fractal source's samples per side and seed.
     messages: the VTKMessages that capture VTK's errors (a new one when None).
+    progress: called as progress(fraction) with the reader's (or source's) progress events.
     Raises AppError with one line for a missing / unreadable file or an empty image.
     """
     import geomipmap  # noqa: deferred so that --help works without the compiled package
@@ -45,6 +47,9 @@ def load_terrain(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
         algo.SetSeed(seed)
         what = "synthetic terrain failed"
     messages.observe(algo)
+    if progress is not None:
+        algo.AddObserver(vtkCommand.ProgressEvent,
+                         lambda obj, _event: progress(obj.GetProgress()))
     ok = algo.GetExecutive().Update()
     image = algo.GetOutput()
     err = messages.first_error()
@@ -59,3 +64,10 @@ def load_terrain(dem=None, height_scale=1.0, spacing=None, terrain_rgb=False,
     if not np.isfinite(heights.z).any():
         raise AppError(f"{what}: every sample is nodata")
     return image, heights
+
+
+def load_terrain_for(args, messages=None, progress=None):
+    """load_terrain with the terrain options of command.add_terrain_options."""
+    return load_terrain(dem=args.dem, height_scale=args.height_scale, spacing=args.spacing,
+                        terrain_rgb=args.terrain_rgb, synthetic_size=args.synthetic_size,
+                        seed=args.seed, messages=messages, progress=progress)

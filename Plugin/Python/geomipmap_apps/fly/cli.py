@@ -42,36 +42,11 @@ exit status: 0 ok, 2 bad input (one line on stderr), 1 internal error.
 """
 
 
-def min_block_size():
-    """The engine's one minimum block size (gmm::kMinBlockQuads), as the mapper states it."""
-    from geomipmap import vtkGeoMipMapMapper
-
-    return vtkGeoMipMapMapper.GetMinimumBlockSize()
-
-
-def _colour(text):
-    if text == "elevation" or (text.startswith("texture:") and len(text) > 8):
-        return text
-    raise argparse.ArgumentTypeError(f"expected 'elevation' or 'texture:FILE.png', got {text!r}")
-
-
 def build_parser():
     p = command.ArgumentParser(prog=PROG, description="Fly a camera over a DEM rendered with GeoMipMapping "
                 "LOD; write PNG frames, a per-frame CSV of LOD statistics and a summary.",
                 epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
-    g = p.add_argument_group("terrain")
-    g.add_argument("--dem", metavar="FILE", help="DEM to fly over (any format the "
-                   "vtkGeoMipMapTerrainReader reads); default: synthetic terrain")
-    g.add_argument("--height-scale", type=command.positive(float), default=1.0,
-                   help="metres per stored height unit (default 1)")
-    g.add_argument("--spacing", type=command.positive(float), default=None,
-                   help="sample spacing in metres for images without georeference "
-                   "(and the synthetic terrain, default 30)")
-    g.add_argument("--terrain-rgb", action="store_true", help="decode an RGB PNG as terrain-RGB")
-    g.add_argument("--synthetic-size", type=command.positive(int, 2, strict=False), default=1025,
-                   help="synthetic terrain samples per side (default 1025)")
-    g.add_argument("--seed", type=command.positive(int, 0, strict=False), default=1,
-                   help="synthetic terrain seed (default 1)")
+    command.add_terrain_options(p)
     g = p.add_argument_group("path")
     g.add_argument("--path", choices=("orbit", "line"), default="orbit",
                    help="orbit around the centre (default) or a straight line across")
@@ -88,18 +63,9 @@ def build_parser():
                    help="look-down angle in degrees, -89..89 (default 15)")
     g.add_argument("--view-angle", type=float, default=50.0,
                    help="vertical field of view in degrees (default 50)")
-    g = p.add_argument_group("rendering")
-    g.add_argument("--tau", type=command.positive(float, 0, strict=False), default=1.0,
-                   help="pixel error bound (default 1)")
-    g.add_argument("--block-size", type=int, default=64,
-                   help=f"block size in quads, a power of two {min_block_size()}..1024 "
-                   "(default 64)")
-    g.add_argument("--size", type=command.window_size, default=(1280, 720), help="WxH (default 1280x720)")
-    g.add_argument("--color", type=_colour, default="elevation",
-                   help="'elevation' (default) or 'texture:FILE.png' (draped over the extent)")
-    g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
+    g = command.add_rendering_options(p)
     g.add_argument("--interactive", action="store_true",
-                   help="on-screen window, then explore with a terrain interactor")
+                   help="on-screen window, then explore the terrain as in geomipmap-view")
     g = p.add_argument_group("output")
     g.add_argument("--out", default="geomipmap-flight", help="output folder "
                    "(default ./geomipmap-flight)")
@@ -117,9 +83,6 @@ def build_parser():
 
 def check(args):
     """Cross-option checks argparse cannot express."""
-    b, least = args.block_size, min_block_size()
-    if b < least or b > 1024 or b & (b - 1):
-        raise AppError(f"--block-size must be a power of two in {least}..1024, got {b}")
     if not -89.0 <= args.pitch <= 89.0:
         raise AppError(f"--pitch must be in -89..89 degrees, got {args.pitch:g}")
     if not 1.0 <= args.view_angle <= 170.0:
@@ -134,13 +97,9 @@ def check(args):
         args.frames = 300
     if args.waypoints and not os.path.isfile(args.waypoints):
         raise AppError(f"waypoint file not found: {args.waypoints}")
-    if args.dem and not os.path.isfile(args.dem):
-        raise AppError(f"DEM file not found: {args.dem}")
     if args.video:
         video.check(args.video, args.size, args.fps, args.video_encoder)
-    if not os.environ.get("DISPLAY"):
-        raise AppError("no X display (DISPLAY is unset): VTK here renders through X; "
-                       "run under xvfb-run -a")
+    command.check_common(args)
 
 
 def fly(args):
@@ -151,10 +110,7 @@ def fly(args):
     from . import report
 
     messages = VTKMessages()
-    image, heights = terrain.load_terrain(
-        dem=args.dem, height_scale=args.height_scale, spacing=args.spacing,
-        terrain_rgb=args.terrain_rgb, synthetic_size=args.synthetic_size, seed=args.seed,
-        messages=messages)
+    image, heights = terrain.load_terrain_for(args, messages)
     how = dict(clearance=args.clearance, frames=args.frames, pitch=args.pitch,
                view_angle=args.view_angle)
     if args.waypoints:
@@ -163,9 +119,8 @@ def fly(args):
         path = flight.Line(heights, **how)
     else:
         path = flight.Orbit(heights, **how)
-    view = scene.Scene(image, heights, block_size=args.block_size, tau=args.tau,
-                       color=args.color, lighting=not args.no_lighting, size=args.size,
-                       on_screen=args.interactive, title=PROG, messages=messages)
+    view = scene.Scene.from_args(image, heights, args, on_screen=args.interactive,
+                                 title=PROG, messages=messages)
     # Only now, when the input is known good, touch the output folders.
     folder = args.out
     try:
@@ -215,8 +170,12 @@ def fly(args):
         where.append(movie.describe())
     text = report.summary(log.rows, args.tau, where)
     if args.interactive:
+        from ..view.viewer import Overlay, Viewer
+
         print(text)
-        view.interact()
+        explore = Viewer(view, image, Overlay(view.window), prog=PROG)
+        explore.initialize()
+        explore.start()
         return None
     return text
 
