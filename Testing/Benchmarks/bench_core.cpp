@@ -5,6 +5,7 @@
 //   GEOMIPMAP_BENCH_MAX=16385 build-c/Testing/Benchmarks/bench_core # adds 16385^2 (~1 GB)
 //   GEOMIPMAP_BENCH_THREADS=1 ...                                  # table build threads (0 = all)
 //
+// BM_LodFlightFar20km: the same flight with the far plane at 20 km.
 // Scene: synthetic terrain (gmm::makeSyntheticTerrain, 30 m spacing, seed 42), camera flying
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
@@ -147,9 +148,14 @@ Scene& scene(int size, int blockQuads)
   return s;
 }
 
-void runFlight(benchmark::State& state, int size, int blockQuads)
+// farDistance: 0 keeps the flight's 10^6 m (the whole DEM ahead is in view); else the far
+// plane of a realistic viewer (terrain beyond it is left to fog or a horizon).
+void runFlight(benchmark::State& state, int size, int blockQuads, double farDistance = 0.0)
 {
   Scene& s = scene(size, blockQuads);
+  if (farDistance > 0.0)
+    for (gmm::View& v : s.flight)
+      v.farDistance = farDistance;
   gmm::Engine& e = *s.engine;
   std::size_t frame = 0, triangles = 0, reused = 0, visible = 0, regenFrames = 0;
   double maxErr = 0, totalUs = 0, regenUs = 0;
@@ -184,6 +190,8 @@ void runFlight(benchmark::State& state, int size, int blockQuads)
   state.counters["table_build_s"] = s.tableSeconds;
   state.counters["fullres_ms"] = s.fullResSeconds * 1e3;
   state.counters["fullres_tris"] = static_cast<double>(s.fullResTriangles);
+  for (gmm::View& v : s.flight)
+    v.farDistance = 1e6; // the scene is shared by the next registrations
 }
 
 void BM_FullResolutionIndices(benchmark::State& state)
@@ -218,6 +226,11 @@ int main(int argc, char** argv)
   {
     benchmark::RegisterBenchmark(("BM_LodFlight/" + std::to_string(s)).c_str(),
       [s](benchmark::State& st) { runFlight(st, s, 64); })
+      ->Unit(benchmark::kMicrosecond)
+      ->UseRealTime()
+      ->MinTime(2.0);
+    benchmark::RegisterBenchmark(("BM_LodFlightFar20km/" + std::to_string(s)).c_str(),
+      [s](benchmark::State& st) { runFlight(st, s, 64, 20000.0); })
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
