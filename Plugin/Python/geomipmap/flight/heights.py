@@ -44,13 +44,21 @@ class Heights:
                               "samples)")
         self.image = vtkImageData()
         self.image.ShallowCopy(image)
-        self.z = vtk_to_numpy(scalars).astype(np.float64).reshape(ny, nx)
+        # A copy in the narrowest float type that holds the heights exactly (float32 for
+        # 16-bit and float DEMs): 4 bytes a sample, where float64 took 2 GiB at 16385^2.
+        a = vtk_to_numpy(scalars)
+        if a.ndim > 1:
+            a = a[:, 0]
+        self.z = np.array(a, dtype=np.result_type(a.dtype, np.float32)).reshape(ny, nx)
         self.nx, self.ny = nx, ny
         self.ox, self.oy, _ = image.GetOrigin()
         self.dx, self.dy, _ = image.GetSpacing()
-        finite = self.z[np.isfinite(self.z)]
-        self.zmin = float(finite.min()) if finite.size else 0.0
-        self.zmax = float(finite.max()) if finite.size else 0.0
+        finite = np.isfinite(self.z)  # a bool mask (1 byte a sample), no float copy
+        if finite.any():
+            self.zmin = float(self.z.min(where=finite, initial=np.inf))
+            self.zmax = float(self.z.max(where=finite, initial=-np.inf))
+        else:
+            self.zmin = self.zmax = 0.0
 
     @property
     def bounds(self):
@@ -74,7 +82,7 @@ class Heights:
         den = np.zeros_like(fx)
         for di, dj, w in ((0, 0, (1 - tx) * (1 - ty)), (1, 0, tx * (1 - ty)),
                           (0, 1, (1 - tx) * ty), (1, 1, tx * ty)):
-            v = self.z[j0 + dj, i0 + di]
+            v = self.z[j0 + dj, i0 + di].astype(np.float64)
             ok = np.isfinite(v)
             num += np.where(ok, v, 0.0) * w
             den += np.where(ok, w, 0.0)
