@@ -1,5 +1,6 @@
 #include "TerrainIO.h"
 
+#include "TerrainGDAL.h"       // GdalErrors, GdalDataset, registerGdal
 #include "TerrainGeographic.h" // geoGrid
 
 #include "Heightfield.h" // gmm::kMaxHeight
@@ -20,7 +21,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <new>
 #include <set>
 #include <sys/stat.h>
@@ -127,35 +127,6 @@ std::string checkSize(long long nx, long long ny, double fileSize, double minByt
   }
   return std::string();
 }
-
-// Captures GDAL's errors (thread-local handler) so they end up in the VTK error text.
-struct GdalErrors
-{
-  std::string text;
-  static void CPL_STDCALL handler(CPLErr cls, CPLErrorNum, const char* msg)
-  {
-    auto* self = static_cast<GdalErrors*>(CPLGetErrorHandlerUserData());
-    if (self && cls >= CE_Failure && msg)
-    {
-      self->text += (self->text.empty() ? "" : "; ") + std::string(msg);
-    }
-  }
-  GdalErrors() { CPLPushErrorHandlerEx(&GdalErrors::handler, this); }
-  ~GdalErrors() { CPLPopErrorHandler(); }
-  std::string suffix() const { return text.empty() ? std::string() : " (GDAL: " + text + ")"; }
-};
-
-struct GdalDataset
-{
-  GDALDatasetH h = nullptr;
-  ~GdalDataset()
-  {
-    if (h)
-    {
-      GDALClose(h);
-    }
-  }
-};
 
 double footToMetre(const std::string& unit)
 {
@@ -358,8 +329,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
 std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>* progress)
 {
-  static std::once_flag once;
-  std::call_once(once, []() { GDALAllRegister(); });
+  registerGdal();
   GdalErrors errors;
   // Declared before the dataset, so that it is unlinked after the dataset is closed.
   const std::unique_ptr<VsiMemFile> mem(in.inMemory ? new VsiMemFile(in) : nullptr);
