@@ -1,5 +1,6 @@
 #include "TerrainIO.h"
 
+#include "TerrainFill.h"       // fillNodata
 #include "TerrainGDAL.h"       // GdalErrors, GdalDataset, registerGdal
 #include "TerrainGeographic.h" // geoGrid
 
@@ -588,22 +589,42 @@ std::string readAny(const Input& in, const TerrainReadOptions& opt, TerrainRaste
   }
 }
 
-// A read, then the geographic lattice resampled to the local grid (header: size only).
+// A read, then the geographic lattice resampled to the local grid, then voids filled when
+// asked (header: size only).
 std::string readAndGrid(const Input& in, const TerrainReadOptions& opt, TerrainRaster& out,
   const std::function<void(double)>* progress)
 {
-  std::string problem = readAny(in, opt, out, progress);
-  if (problem.empty() && out.geographic)
+  if (opt.fillNodata)
   {
-    try
+    const std::string problem = checkFillOptions(opt.fillSearchDistance, opt.fillSmoothingIterations);
+    if (!problem.empty())
     {
-      problem = geoGrid(out, progress != nullptr);
+      return "cannot be read with " + problem;
     }
-    catch (const std::bad_alloc&)
+  }
+  // Filling: the read reports progress up to 0.7, the fill the rest.
+  const bool fill = opt.fillNodata && progress;
+  const std::function<void(double)> readPart = [progress](double f) { (*progress)(0.7 * f); };
+  const std::function<void(double)> fillPart = [progress](double f) { (*progress)(0.7 + 0.3 * f); };
+  std::string problem = readAny(in, opt, out, fill ? &readPart : progress);
+  try
+  {
+    std::vector<unsigned char> inside; // geographic: the source's footprint, when filling
+    if (problem.empty() && out.geographic)
     {
-      out.z = std::vector<float>();
-      problem = "needs more memory than is available";
+      problem = geoGrid(out, progress != nullptr, fill ? &inside : nullptr);
     }
+    if (problem.empty() && fill)
+    {
+      problem = fillNodata(out.z, out.nx, out.ny, opt.fillSearchDistance,
+        opt.fillSmoothingIterations, out.geographic ? &inside : nullptr, out.filled, fillPart);
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    out.z = std::vector<float>();
+    out.filled = std::vector<unsigned char>();
+    problem = "needs more memory than is available";
   }
   return problem;
 }
