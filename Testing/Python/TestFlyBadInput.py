@@ -65,8 +65,19 @@ cases = {
     "unknown option": ["--bogus"],
     "missing texture": ["--color", "texture:" + os.path.join(out, "nope.png")] + small,
     "colour name": ["--color", "rainbow"],
+    "fill distance without --fill-voids": ["--fill-distance", "10"] + small,
+    "fill smoothing without --fill-voids": ["--fill-smoothing", "2"] + small,
+    "fill distance -1": ["--fill-voids", "--fill-distance", "-1"] + small,
+    "fill distance inf": ["--fill-voids", "--fill-distance", "inf"] + small,
+    "fill smoothing 1001": ["--fill-voids", "--fill-smoothing", "1001"] + small,
+    "fill smoothing -1": ["--fill-voids", "--fill-smoothing", "-1"] + small,
 }
-expected = {}  # case -> words its error line must hold
+expected = {  # case -> words its error line must hold
+    "fill distance without --fill-voids": ["--fill-distance", "needs --fill-voids"],
+    "fill smoothing without --fill-voids": ["--fill-smoothing", "needs --fill-voids"],
+    "fill distance -1": ["--fill-distance"],
+    "fill smoothing 1001": ["--fill-smoothing", "0..1000"],
+}
 for name in THROUGH_COMMAND:
     filename, content, words = BAD[name]
     path = write(out, filename, content)
@@ -84,7 +95,7 @@ for name, args in cases.items():
     lines = [ln for ln in se.splitlines() if ln.strip()]
     ok = (rc != 0 and len(lines) == 1 and "Traceback" not in se
           and lines[0].startswith("geomipmap-fly: error:"))
-    if name in expected:  # a bad waypoint file: exit 2 and a line that says where and what
+    if name in expected:  # exit 2 and a line that says where and what
         missing = [w for w in expected[name] if w not in lines[0]] if lines else ["(no line)"]
         ok = ok and rc == 2 and not missing
         if missing:

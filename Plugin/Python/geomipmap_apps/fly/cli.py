@@ -9,7 +9,7 @@ import argparse
 import glob
 import os
 
-from .. import command, video
+from .. import command, terrain, video
 from ..errors import AppError, VTKMessages
 
 PROG = "geomipmap-fly"
@@ -31,6 +31,7 @@ and lines starting with # are ignored.
 examples:
   geomipmap-fly                                    # orbit over synthetic terrain
   geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30 --video tile.mp4
+  geomipmap-fly --dem srtm_with_voids.tif --fill-voids --fill-distance 50
   geomipmap-fly --dem dem.tif --waypoints route.csv --tau 2 --every 10 --size 1920x1080
 
 output: DIR/frame_NNNNN.png, DIR/flight.csv (frame, time_s, lod_ms, render_ms, triangles,
@@ -68,6 +69,7 @@ def build_parser():
                    help="sample spacing in metres for images without georeference "
                    "(and the synthetic terrain, default 30)")
     g.add_argument("--terrain-rgb", action="store_true", help="decode an RGB PNG as terrain-RGB")
+    terrain.add_fill_arguments(g)
     g.add_argument("--synthetic-size", type=command.positive(int, 2, strict=False), default=1025,
                    help="synthetic terrain samples per side (default 1025)")
     g.add_argument("--seed", type=command.positive(int, 0, strict=False), default=1,
@@ -132,6 +134,7 @@ def check(args):
             raise AppError(f"--seconds {args.seconds:g} at --fps {args.fps:g} gives no frame")
     elif args.frames is None:
         args.frames = 300
+    args.fill = terrain.fill_options(args)
     if args.waypoints and not os.path.isfile(args.waypoints):
         raise AppError(f"waypoint file not found: {args.waypoints}")
     if args.dem and not os.path.isfile(args.dem):
@@ -147,14 +150,14 @@ def fly(args):
     """Everything after option parsing; returns the summary text."""
     from geomipmap import flight
 
-    from .. import scene, terrain
+    from .. import scene
     from . import report
 
     messages = VTKMessages()
     image, heights = terrain.load_terrain(
         dem=args.dem, height_scale=args.height_scale, spacing=args.spacing,
         terrain_rgb=args.terrain_rgb, synthetic_size=args.synthetic_size, seed=args.seed,
-        messages=messages)
+        messages=messages, fill=args.fill)
     how = dict(clearance=args.clearance, frames=args.frames, pitch=args.pitch,
                view_angle=args.view_angle)
     if args.waypoints:
