@@ -9,6 +9,7 @@
 // - `inside` keeps samples outside a footprint NaN; bad options are refused;
 // - through gmm::readTerrain: off by default, and a lon/lat raster's resampled grid keeps
 //   its corners (outside the source's footprint) NaN while its voids are filled.
+#include "GdalTestRaster.h" // writeGdalRaster
 #include "TerrainFill.h"
 #include "TerrainGeographic.h" // localToGeographic
 #include "TerrainIO.h"
@@ -304,39 +305,29 @@ TEST(TerrainFill, BadOptionsAreRefused)
 
 namespace
 {
-// A GeoTIFF of f over nx x ny samples with a NaN disk, written with GDAL (MEM copy);
-// geographic: lon/lat from (lon0, lat0 top) at `step` degrees, else UTM 10N at 30 m.
+// A GeoTIFF of the plane over nx x ny samples with a nodata disk; geographic: lon/lat
+// from (-122, 47) at `step` degrees, else UTM 10N at 30 m.
 std::string writeTiff(const std::string& path, int nx, int ny, bool geographic, double step,
   const std::array<double, 3>& disk)
 {
-  GDALAllRegister();
-  GDALDatasetH src = GDALCreate(GDALGetDriverByName("MEM"), "", nx, ny, 1, GDT_Float32, nullptr);
-  std::vector<float> v(static_cast<std::size_t>(nx) * ny);
-  for (int r = 0; r < ny; ++r)
+  gmmtest::GdalRaster r;
+  r.nx = nx;
+  r.ny = ny;
+  r.values.resize(static_cast<std::size_t>(nx) * ny);
+  for (int row = 0; row < ny; ++row)
     for (int c = 0; c < nx; ++c)
-      v[static_cast<std::size_t>(r) * nx + c] = std::hypot(c - disk[0], r - disk[1]) <= disk[2]
-        ? -9999.0f
-        : static_cast<float>(plane(c, r));
-  GDALRasterBandH band = GDALGetRasterBand(src, 1);
-  GDALSetRasterNoDataValue(band, -9999.0);
-  EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0), CE_None);
-  double gt[6] = { geographic ? -122.0 : 500000.0, geographic ? step : 30.0, 0,
-    geographic ? 47.0 : 4000000.0, 0, geographic ? -step : -30.0 };
-  GDALSetGeoTransform(src, gt);
-  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-  OSRImportFromEPSG(srs, geographic ? 4326 : 32610);
-  OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
-  GDALSetSpatialRef(src, srs);
-  OSRDestroySpatialReference(srs);
-  GDALDatasetH out = GDALCreateCopy(
-    GDALGetDriverByName("GTiff"), path.c_str(), src, FALSE, nullptr, nullptr, nullptr);
-  EXPECT_NE(out, nullptr);
-  if (out)
+      r.values[static_cast<std::size_t>(row) * nx + c] =
+        std::hypot(c - disk[0], row - disk[1]) <= disk[2] ? -9999.0 : plane(c, row);
+  r.hasNodata = true;
+  r.nodata = -9999.0;
+  r.geographic = geographic;
+  if (geographic)
   {
-    GDALClose(out);
+    r.west = -122.0;
+    r.north = 47.0;
+    r.step = step;
   }
-  GDALClose(src);
-  return path;
+  return gmmtest::writeGdalRaster(path, r);
 }
 } // namespace
 

@@ -27,7 +27,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 import demfiles
 from geomipmap import vtkGeoMipMapTerrainReader as Reader
 from gmmdata import optional_data_file
-from gmmtestutil import ErrorCatcher, check, update
+from gmmtestutil import ErrorCatcher, check, read_dem, update
 
 SLOPE = (0.5 / 30.0, 0.25 / 30.0)  # metres per metre east, north (30 m samples)
 NY, NX = 150, 200
@@ -38,13 +38,7 @@ HOLES = ((20, 20, 1.5), (60, 40, 3), (100, 30, 8), (0, 90, 5), (199, 0, 4), (140
 
 def read(path, **options):
     """(reader, image, heights (ny, nx) float32 copy, FilledNodata (ny, nx) or None)."""
-    r = Reader()
-    r.SetFileName(path)
-    for key, value in options.items():
-        getattr(r, "Set" + key)(value)
-    errors = ErrorCatcher(r)
-    check(update(r), f"{os.path.basename(path)} {options} reads (errors: {errors.messages})")
-    img = r.GetOutput()
+    r, img = read_dem(path, **options)
     nx, ny, _ = img.GetDimensions()
     z = vtk_to_numpy(img.GetPointData().GetScalars()).reshape(ny, nx).copy()
     mask = img.GetPointData().GetArray("FilledNodata")
