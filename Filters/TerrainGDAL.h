@@ -2,8 +2,10 @@
 // the drivers once, capturing GDAL's error messages for our own, closing datasets.
 #pragma once
 
+#include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <ogr_srs_api.h>
 
 #include <mutex>
 #include <string>
@@ -57,5 +59,21 @@ struct GdalDataset
   GdalDataset(const GdalDataset&) = delete;
   GdalDataset& operator=(const GdalDataset&) = delete;
 };
+
+// A CRS as the reader records it: "AUTHORITY:CODE" when it has one, else its WKT.
+inline std::string crsName(OGRSpatialReferenceH srs)
+{
+  const char* auth = OSRGetAuthorityName(srs, nullptr);
+  const char* code = OSRGetAuthorityCode(srs, nullptr);
+  if (auth && code)
+  {
+    return std::string(auth) + ":" + code;
+  }
+  char* wkt = nullptr;
+  OSRExportToWkt(srs, &wkt);
+  const std::string name = wkt ? wkt : "unknown";
+  CPLFree(wkt);
+  return name;
+}
 
 } // namespace gmm

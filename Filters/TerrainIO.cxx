@@ -1,7 +1,7 @@
 #include "TerrainIO.h"
 
 #include "TerrainFill.h"       // fillNodata
-#include "TerrainGDAL.h"       // GdalErrors, GdalDataset, registerGdal
+#include "TerrainGDAL.h"       // GdalErrors, GdalDataset, registerGdal, crsName
 #include "TerrainGeographic.h" // geoGrid
 
 #include "Heightfield.h" // gmm::kMaxHeight
@@ -265,19 +265,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
   double linear = 1.0;
   if (srs)
   {
-    const char* auth = OSRGetAuthorityName(srs, nullptr);
-    const char* code = OSRGetAuthorityCode(srs, nullptr);
-    if (auth && code)
-    {
-      out.crs = std::string(auth) + ":" + code;
-    }
-    else
-    {
-      char* wkt = nullptr;
-      OSRExportToWkt(srs, &wkt);
-      out.crs = wkt ? wkt : "unknown";
-      CPLFree(wkt);
-    }
+    out.crs = crsName(srs);
     if (!geographic)
     {
       linear = OSRGetLinearUnits(srs, nullptr);

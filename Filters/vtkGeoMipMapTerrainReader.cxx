@@ -205,10 +205,7 @@ int vtkGeoMipMapTerrainReader::RequestData(
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-// (lon0, lat0, central meridian) from an image's field data; false when absent.
-bool GeographicFrame(vtkImageData* image, double frame[3])
+bool vtkGeoMipMapTerrainReader::GetGeographicFrame(vtkImageData* image, double frame[3])
 {
   vtkFieldData* fd = image ? image->GetFieldData() : nullptr;
   vtkDataArray* origin = fd ? fd->GetArray("GeographicOrigin") : nullptr;
@@ -223,13 +220,12 @@ bool GeographicFrame(vtkImageData* image, double frame[3])
   frame[2] = meridian->GetComponent(0, 0);
   return true;
 }
-}
 
 bool vtkGeoMipMapTerrainReader::GeographicToLocal(
   vtkImageData* image, double lon, double lat, double xy[2])
 {
   double f[3];
-  if (!GeographicFrame(image, f))
+  if (!GetGeographicFrame(image, f))
   {
     return false;
   }
@@ -241,7 +237,7 @@ bool vtkGeoMipMapTerrainReader::LocalToGeographic(
   vtkImageData* image, double x, double y, double lonLat[2])
 {
   double f[3];
-  if (!GeographicFrame(image, f))
+  if (!GetGeographicFrame(image, f))
   {
     return false;
   }

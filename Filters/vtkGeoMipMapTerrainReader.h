@@ -185,6 +185,12 @@ public:
   ///@}
 
   /**
+   * The geographic frame of an image this reader produced: (lon0, lat0, central meridian)
+   * from "GeographicOrigin" and "CentralMeridian". False (frame untouched) when absent.
+   */
+  static bool GetGeographicFrame(vtkImageData* image, double frame[3]);
+
+  /**
    * The stated accuracy of the geographic frame (see the class description): the largest
    * relative error of a horizontal distance on the grid against the WGS84 geodesic
    * distance, for rasters up to 1 degree of longitude wide.
