@@ -1,7 +1,7 @@
 """geomipmap-fly on bad input: every case exits non-zero with ONE line on stderr.
 
 Missing / empty / garbage DEM files, a DEM the reader refuses, waypoints outside the
-terrain or malformed, and nonsense option values. No case may print a traceback or VTK's
+terrain or malformed, a --texture that cannot be placed, and nonsense option values. No case may print a traceback or VTK's
 multi-line error dumps. Malformed waypoint files (issue #16 item 6) must also exit 2
 ("bad input", not 1 "internal error") with a line naming the file and the problem: the
 CSV line or the JSON waypoint number where it is. Every malformed waypoint file of
@@ -11,6 +11,9 @@ command (those that used to end in an internal error).
 
 import os
 
+import numpy as np
+
+import demfiles
 from flytestutil import check, run, setup
 from gmmdata import optional_data_file
 from waypointcases import BAD, THROUGH_COMMAND, write
@@ -37,6 +40,9 @@ geo_on_synth = os.path.join(out, "geo.csv")
 with open(geo_on_synth, "w") as f:
     f.write("lon,lat,agl\n1.0,42.1,100\n1.1,42.2,100\n")
 
+
+ortho = demfiles.tiff(os.path.join(out, "ortho.tif"), np.zeros((8, 8, 3), np.uint8), rgb=True)
+nocrs = demfiles.tiff(os.path.join(out, "nocrs.tif"), np.zeros((8, 8), np.float32), georef=None)
 
 small = ["--synthetic-size", "65", "--frames", "2", "--size", "64x64", "--out",
          os.path.join(out, "o")]
@@ -71,12 +77,24 @@ cases = {
     "fill distance inf": ["--fill-voids", "--fill-distance", "inf"] + small,
     "fill smoothing 1001": ["--fill-voids", "--fill-smoothing", "1001"] + small,
     "fill smoothing -1": ["--fill-voids", "--fill-smoothing", "-1"] + small,
+    "texture missing": ["--texture", os.path.join(out, "nope.tif")] + small,
+    "texture and --color texture": ["--texture", garbage, "--color", "texture:" + garbage] + small,
+    "texture on the synthetic terrain": ["--texture", ortho] + small,
+    "texture not an image": ["--texture", garbage, "--dem", nocrs] + small[2:],
+    "texture on a DEM without CRS": ["--texture", ortho, "--dem", nocrs] + small[2:],
+    "texture size 20000": ["--texture-size", "20000"] + small,
 }
 expected = {  # case -> words its error line must hold
     "fill distance without --fill-voids": ["--fill-distance", "needs --fill-voids"],
     "fill smoothing without --fill-voids": ["--fill-smoothing", "needs --fill-voids"],
     "fill distance -1": ["--fill-distance"],
     "fill smoothing 1001": ["--fill-smoothing", "0..1000"],
+    "texture missing": ["nope.tif"],
+    "texture and --color texture": ["not both"],
+    "texture on the synthetic terrain": ["--texture needs a georeferenced --dem"],
+    "texture not an image": [garbage, "not an image"],
+    "texture on a DEM without CRS": [ortho, "no CRS"],
+    "texture size 20000": ["16384"],
 }
 for name in THROUGH_COMMAND:
     filename, content, words = BAD[name]

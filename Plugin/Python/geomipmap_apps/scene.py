@@ -41,7 +41,9 @@ class Scene:
 
     image, heights: the terrain (terrain.load_terrain). block_size, tau: the mapper's
     block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
-    "texture:FILE.png" (draped over the extent). size: the window's (width, height).
+    "texture:FILE.png" (stretched over the extent). drape: a georeferenced image
+    (orthophoto) laid over that colouring by its coordinates (vtkGeoMipMapImageDrape),
+    resampled to at most drape_size pixels a side. size: the window's (width, height).
     on_screen: a window on the display instead of off-screen rendering. title: the
     window's name. messages: VTKMessages for errors (texture reading). The camera is
     the renderer's active one; a geomipmap.flight path drives it (apply(renderer, frame)).
@@ -49,7 +51,7 @@ class Scene:
 
     def __init__(self, image, heights, block_size=64, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
-                 messages=None):
+                 messages=None, drape=None, drape_size=8192):
         import geomipmap
 
         self.messages = messages or VTKMessages()
@@ -60,6 +62,8 @@ class Scene:
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)
         self._colour(heights, color)
+        if drape:
+            self._drape(image, drape, drape_size)
         prop = self.actor.GetProperty()
         if not lighting:
             prop.LightingOff()
@@ -115,6 +119,25 @@ class Scene:
         self.texture_reader = reader
         self.actor.SetTexture(tex)
         self.mapper.ScalarVisibilityOff()
+
+    def _drape(self, image, path, size):
+        """Lay the georeferenced image at `path` over the terrain (AppError naming it when
+        it cannot be placed: no georeference, a terrain without CRS, ...)."""
+        import geomipmap
+
+        if not os.path.isfile(path):
+            raise AppError(f"texture image not found: {path}")
+        drape = geomipmap.vtkGeoMipMapImageDrape()
+        self.messages.observe(drape)
+        drape.SetFileName(path)
+        drape.SetTerrain(image)
+        drape.SetMaximumSize(size)
+        ok = drape.GetExecutive().Update()
+        err = self.messages.first_error()
+        if not ok or err:
+            raise AppError(err or f"cannot drape {path}")
+        self.drape = drape  # its output is the mapper's drape image
+        self.mapper.SetDrapeImage(drape.GetOutput())
 
     def _sun(self):
         """A sun from the north-west, 40 degrees up (relief reads as in a shaded map)."""

@@ -8,6 +8,7 @@ exit status 2 (1 for an unexpected internal error), never a traceback.
 import argparse
 import glob
 import os
+import sys
 
 from .. import command, terrain, video
 from ..errors import AppError, VTKMessages
@@ -32,6 +33,7 @@ examples:
   geomipmap-fly                                    # orbit over synthetic terrain
   geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30 --video tile.mp4
   geomipmap-fly --dem srtm_with_voids.tif --fill-voids --fill-distance 50
+  geomipmap-fly --dem dem_utm.tif --texture ortho_lonlat.tif --pitch 40
   geomipmap-fly --dem dem.tif --waypoints route.csv --tau 2 --every 10 --size 1920x1080
 
 output: DIR/frame_NNNNN.png, DIR/flight.csv (frame, time_s, lod_ms, render_ms, triangles,
@@ -98,7 +100,14 @@ def build_parser():
                    "(default 64)")
     g.add_argument("--size", type=command.window_size, default=(1280, 720), help="WxH (default 1280x720)")
     g.add_argument("--color", type=_colour, default="elevation",
-                   help="'elevation' (default) or 'texture:FILE.png' (draped over the extent)")
+                   help="'elevation' (default) or 'texture:FILE.png' (stretched over the extent)")
+    g.add_argument("--texture", metavar="FILE", help="drape a georeferenced image (GeoTIFF "
+                   "orthophoto, any GDAL raster with RGB bands) over the terrain by its "
+                   "coordinates, reprojected when its CRS differs from the DEM's; outside it "
+                   "the terrain keeps --color")
+    g.add_argument("--texture-size", type=command.positive(int, 1, strict=False), default=8192,
+                   metavar="PIXELS", help="resample a --texture larger than this a side "
+                   "(default 8192; at most 16384, the OpenGL texture limit)")
     g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
     g.add_argument("--interactive", action="store_true",
                    help="on-screen window, then explore with a terrain interactor")
@@ -139,6 +148,17 @@ def check(args):
         raise AppError(f"waypoint file not found: {args.waypoints}")
     if args.dem and not os.path.isfile(args.dem):
         raise AppError(f"DEM file not found: {args.dem}")
+    if args.texture:
+        if args.color != "elevation":
+            raise AppError("give --texture (placed by its georeference) or --color texture:FILE "
+                           "(stretched over the extent), not both")
+        if not os.path.isfile(args.texture):
+            raise AppError(f"texture image not found: {args.texture}")
+        if not args.dem:
+            raise AppError("--texture needs a georeferenced --dem: the synthetic terrain has no "
+                           "coordinates to place the image by")
+    if args.texture_size > 16384:
+        raise AppError(f"--texture-size must be at most 16384, got {args.texture_size}")
     if args.video:
         video.check(args.video, args.size, args.fps, args.video_encoder)
     if not os.environ.get("DISPLAY"):
@@ -168,7 +188,8 @@ def fly(args):
         path = flight.Orbit(heights, **how)
     view = scene.Scene(image, heights, block_size=args.block_size, tau=args.tau,
                        color=args.color, lighting=not args.no_lighting, size=args.size,
-                       on_screen=args.interactive, title=PROG, messages=messages)
+                       on_screen=args.interactive, title=PROG, messages=messages,
+                       drape=args.texture, drape_size=args.texture_size)
     # Only now, when the input is known good, touch the output folders.
     folder = args.out
     try:
@@ -211,6 +232,8 @@ def fly(args):
         log.close()
     if movie:
         movie.close()
+    for line in messages.warnings:  # e.g. a DEM without georeference, a photo without CRS
+        print(f"{PROG}: warning: {line}", file=sys.stderr)
     where = [f"CSV: {os.path.abspath(csv_name)}"]
     where.append(f"frames: {written} PNG in {os.path.abspath(args.out)}" if written
                  else "frames: none written (--no-frames)")
