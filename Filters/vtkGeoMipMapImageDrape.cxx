@@ -86,25 +86,40 @@ vtkMTimeType vtkGeoMipMapImageDrape::GetMTime()
 }
 
 //------------------------------------------------------------------------------
-int vtkGeoMipMapImageDrape::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+bool vtkGeoMipMapImageDrape::Plan(gmm::TerrainFrame& frame, gmm::DrapeRaster& plan)
 {
   const std::string name = this->FileName ? this->FileName : "";
-  gmm::TerrainFrame frame;
-  std::string why;
-  if (!FrameOf(this->Terrain, frame, why))
+  std::string problem;
+  if (!FrameOf(this->Terrain, frame, problem))
   {
-    vtkErrorMacro(<< "Cannot drape '" << name << "': " << why << ".");
-    return 0;
+    vtkErrorMacro(<< "Cannot drape '" << name << "': " << problem << ".");
+    return false;
   }
-  gmm::DrapeOptions options;
-  options.maximumSize = this->MaximumSize;
-  gmm::DrapeRaster plan;
-  const std::string problem = name.empty() ? std::string("no file name was given")
-                                           : gmm::planDrape(name, frame, options, plan);
+  problem = name.empty() ? std::string("no file name was given")
+                         : gmm::planDrape(name, frame, this->Options(), plan);
   if (!problem.empty())
   {
     vtkErrorMacro(<< "Cannot drape '" << name << "': " << problem << ".");
+    return false;
+  }
+  return true;
+}
+
+gmm::DrapeOptions vtkGeoMipMapImageDrape::Options() const
+{
+  gmm::DrapeOptions options;
+  options.maximumSize = this->MaximumSize;
+  return options;
+}
+
+//------------------------------------------------------------------------------
+int vtkGeoMipMapImageDrape::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  gmm::TerrainFrame frame;
+  gmm::DrapeRaster plan;
+  if (!this->Plan(frame, plan))
+  {
     return 0;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -131,32 +146,24 @@ int vtkGeoMipMapImageDrape::RequestData(
   }
   output->Initialize();
   gmm::TerrainFrame frame;
-  std::string why;
-  if (!FrameOf(this->Terrain, frame, why))
+  gmm::DrapeRaster drape;
+  if (!this->Plan(frame, drape))
   {
-    vtkErrorMacro(<< "Cannot drape '" << name << "': " << why << ".");
     return 0;
   }
-  gmm::DrapeOptions options;
-  options.maximumSize = this->MaximumSize;
-  gmm::DrapeRaster drape;
   // Refuse before reading what the machine cannot hold (the pixels about three times:
   // GDAL's, ours and the output's).
-  std::string problem = gmm::planDrape(name, frame, options, drape);
-  if (problem.empty())
+  const double need = 3.0 * 4.0 * drape.nx * static_cast<double>(drape.ny);
+  const double have = vtkGeoMipMapConversion::AvailableMemoryBytes();
+  if (have > 0 && need > have)
   {
-    const double need = 3.0 * 4.0 * drape.nx * static_cast<double>(drape.ny);
-    const double have = vtkGeoMipMapConversion::AvailableMemoryBytes();
-    if (have > 0 && need > have)
-    {
-      vtkErrorMacro(<< "Cannot drape '" << name << "': its " << drape.nx << " x " << drape.ny
-                    << " pixels need about " << need / 1048576.0 << " MiB, more than the "
-                    << have / 1048576.0 << " MiB available; set MaximumSize.");
-      return 0;
-    }
-    this->UpdateProgress(0.1);
-    problem = gmm::readDrape(name, frame, options, drape);
+    vtkErrorMacro(<< "Cannot drape '" << name << "': its " << drape.nx << " x " << drape.ny
+                  << " pixels need about " << need / 1048576.0 << " MiB, more than the "
+                  << have / 1048576.0 << " MiB available; set MaximumSize.");
+    return 0;
   }
+  this->UpdateProgress(0.1);
+  const std::string problem = gmm::readDrape(name, frame, this->Options(), drape);
   if (!problem.empty())
   {
     vtkErrorMacro(<< "Cannot drape '" << name << "': " << problem << ".");

@@ -44,6 +44,12 @@
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
 class vtkImageData;
+namespace gmm
+{
+struct DrapeOptions;
+struct DrapeRaster;
+struct TerrainFrame;
+}
 
 class GEOMIPMAPFILTERS_EXPORT vtkGeoMipMapImageDrape : public vtkImageAlgorithm
 {
@@ -93,6 +99,10 @@ protected:
   vtkSmartPointer<vtkImageData> Terrain;
 
 private:
+  // The terrain's frame and the output grid; false after an error naming the file.
+  bool Plan(gmm::TerrainFrame& frame, gmm::DrapeRaster& plan);
+  gmm::DrapeOptions Options() const;
+
   vtkGeoMipMapImageDrape(const vtkGeoMipMapImageDrape&) = delete;
   void operator=(const vtkGeoMipMapImageDrape&) = delete;
 };

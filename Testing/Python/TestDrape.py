@@ -164,14 +164,20 @@ def check_extent(what, px, corners):
     return grey
 
 
-def drape_of(terrain, path, **options):
+def try_drape(terrain, path, **options):
+    """(the drape algorithm, whether its update succeeded, its error texts)."""
     d = geomipmap.vtkGeoMipMapImageDrape()
     d.SetFileName(path)
     d.SetTerrain(terrain)
     for key, value in options.items():
         getattr(d, "Set" + key)(value)
     errors = ErrorCatcher(d)
-    check(update(d), f"drape {os.path.basename(path)} {options} (errors: {errors.messages})")
+    return d, update(d), errors.messages
+
+
+def drape_of(terrain, path, **options):
+    d, ok, errors = try_drape(terrain, path, **options)
+    check(ok, f"drape {os.path.basename(path)} {options} (errors: {errors})")
     return d.GetOutput()
 
 
@@ -349,14 +355,8 @@ def refusals(folder):
         ("MaximumSize -1", good, dem, {"MaximumSize": -1}, "MaximumSize"),
     ]
     for what, path, terrain, options, words in cases:
-        d = geomipmap.vtkGeoMipMapImageDrape()
-        d.SetFileName(path)
-        d.SetTerrain(terrain)
-        for key, value in options.items():
-            getattr(d, "Set" + key)(value)
-        errors = ErrorCatcher(d)
-        ok = update(d)
-        text = " ".join(errors.messages)
+        _, ok, errors = try_drape(terrain, path, **options)
+        text = " ".join(errors)
         check(not ok and path in text and words in text,
               f"{what}: fails with an error naming the file and '{words}' ({text.strip()[:200]!r})")
 
