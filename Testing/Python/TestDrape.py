@@ -13,7 +13,8 @@ stretched over the DEM), for:
   expected positions from the reader's own vtkGeoMipMapTerrainReader.GeographicToLocal
   (GeographicLib), against GDAL's warp.
 Also: outside the photo the terrain keeps its own colouring (the same pixels as without
-the drape, lookup-table colours by height); lighting modulates the photo (lit / unlit the
+the drape, lookup-table colours by height), and so it does through a transparent part of
+an RGBA photo (as is, and warped); lighting modulates the photo (lit / unlit the
 same for R, G and B); a drape larger than the OpenGL texture limit is refused with an error
 and the terrain drawn as without it; bad files and settings fail with an error naming the
 file and the problem; MaximumSize resamples and keeps the alignment.
@@ -274,6 +275,34 @@ def lonlat_on_lonlat(folder):
     return check_markers("lon/lat photo on lon/lat DEM", px, expected)
 
 
+def transparent_parts(folder):
+    """An RGBA photo with a transparent stripe: the terrain's colour shows through it, both
+    when the photo's pixels are used as they are and when GDAL warps it (source alpha)."""
+    dem = flat_dem(folder, "dem_a.tif", georef=(500000.0, 4000000.0, 30.0))
+    rgba = np.zeros((100, 120, 4), np.uint8)
+    rgba[..., :3] = GREY
+    rgba[..., 3] = 255
+    rgba[:, 40:80, 3] = 0  # columns 40..79: no data
+    actor_colour = np.round(np.array([0.2, 0.4, 1.0]) * 255)
+    cases = (("UTM", (500400.0, 3999500.0, 10.0), False),
+             ("lon/lat", (-122.992, 36.138, 0.0001), True))
+    for what, (west, north, step), geographic in cases:
+        path = demfiles.tiff(os.path.join(folder, f"alpha{int(geographic)}.tif"), rgba,
+                             georef=(west, north, step), rgb=True, geographic=geographic)
+        drape = drape_of(dem, path)
+        ground = utm_forward if geographic else (lambda lon, lat, _zone: (lon, lat))
+        cx, cy = (round(v) for v in ground(west + 60 * step, north - 50 * step, 10))
+        px, errors = render(dem, drape, cx, cy)
+        check(not errors, f"renders without errors ({errors})")
+        for col, colour, name in ((60, actor_colour, "the terrain's colour through the "
+                                   "transparent stripe"), (20, GREY, "the photo beside it"),
+                                  (100, GREY, "the photo beside it")):
+            c, r = to_pixel(*ground(west + (col + 0.5) * step, north - 50.5 * step, 10), cx, cy)
+            got = px[int(round(r)), int(round(c))]
+            check(np.abs(got - np.array(colour)).max() <= 2,
+                  f"RGBA {what} photo: at its column {col}, {name} ({got.tolist()})")
+
+
 def colouring_and_lighting(folder):
     """Outside the photo the LUT colouring is unchanged; lighting modulates the photo."""
     ys, xs = np.mgrid[0:100, 0:120]
@@ -382,6 +411,7 @@ def main():
     folder = tempfile.mkdtemp(prefix="gmm-drape-")
     try:
         worst = [utm_same_crs(folder), lonlat_photo_on_utm(folder), lonlat_on_lonlat(folder)]
+        transparent_parts(folder)
         colouring_and_lighting(folder)
         refusals(folder)
         maximum_size(folder)
