@@ -31,7 +31,7 @@ const GeographicLib::TransverseMercator& localTM()
 
 } // namespace
 
-std::string geoGrid(TerrainRaster& r, bool withHeights)
+std::string geoGrid(TerrainRaster& r, bool withHeights, std::vector<unsigned char>* inside)
 {
   const int sx = r.nx, sy = r.ny;
   const double west = r.lon0, south = r.lat0;
@@ -94,6 +94,10 @@ std::string geoGrid(TerrainRaster& r, bool withHeights)
   std::vector<float> src;
   src.swap(r.z);
   r.z.assign(static_cast<std::size_t>(nx) * ny, kNaN);
+  if (inside)
+  {
+    inside->assign(r.z.size(), 0);
+  }
   // Source index (u, v) at the lattice nodes: every kLattice nodes and the last one.
   auto lattice = [](int n) {
     std::vector<int> at;
@@ -147,6 +151,10 @@ std::string geoGrid(TerrainRaster& r, bool withHeights)
       if (!(u >= -tol && u <= sx - 1 + tol && v >= -tol && v <= sy - 1 + tol))
       {
         continue; // outside the footprint: nodata
+      }
+      if (inside)
+      {
+        (*inside)[static_cast<std::size_t>(j) * nx + i] = 1;
       }
       const double uc = std::min(std::max(u, 0.0), sx - 1.0), vc = std::min(std::max(v, 0.0), sy - 1.0);
       const int ia = std::min(static_cast<int>(uc), std::max(sx - 2, 0));

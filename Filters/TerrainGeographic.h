@@ -5,6 +5,7 @@
 #include "TerrainIO.h"
 
 #include <string>
+#include <vector>
 
 namespace gmm
 {
@@ -16,8 +17,10 @@ namespace gmm
 // at multiples of the spacing from (0, 0), the source's south-west sample), and heights
 // interpolated bilinearly from the 4 source samples around each node's lon/lat (the nearest
 // sample when one of them is nodata; NaN outside the footprint). Returns "" or a sentence
-// saying why the raster cannot be resampled (the caller adds the file name).
-std::string geoGrid(TerrainRaster& r, bool withHeights);
+// saying why the raster cannot be resampled (the caller adds the file name). inside
+// (optional, with heights): set to nx x ny, 1 for the nodes within the source's footprint.
+std::string geoGrid(
+  TerrainRaster& r, bool withHeights, std::vector<unsigned char>* inside = nullptr);
 
 // The local frame of geographic rasters: WGS84 transverse Mercator (scale 1 on the central
 // meridian), shifted so that (lon0, lat0) is (0, 0). Degrees and metres.

@@ -1,5 +1,7 @@
 #include "TerrainIO.h"
 
+#include "TerrainFill.h"       // fillNodata
+#include "TerrainGDAL.h"       // GdalErrors, GdalDataset, registerGdal, crsName
 #include "TerrainGeographic.h" // geoGrid
 
 #include "Heightfield.h" // gmm::kMaxHeight
@@ -20,7 +22,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <new>
 #include <set>
 #include <sys/stat.h>
@@ -127,35 +128,6 @@ std::string checkSize(long long nx, long long ny, double fileSize, double minByt
   }
   return std::string();
 }
-
-// Captures GDAL's errors (thread-local handler) so they end up in the VTK error text.
-struct GdalErrors
-{
-  std::string text;
-  static void CPL_STDCALL handler(CPLErr cls, CPLErrorNum, const char* msg)
-  {
-    auto* self = static_cast<GdalErrors*>(CPLGetErrorHandlerUserData());
-    if (self && cls >= CE_Failure && msg)
-    {
-      self->text += (self->text.empty() ? "" : "; ") + std::string(msg);
-    }
-  }
-  GdalErrors() { CPLPushErrorHandlerEx(&GdalErrors::handler, this); }
-  ~GdalErrors() { CPLPopErrorHandler(); }
-  std::string suffix() const { return text.empty() ? std::string() : " (GDAL: " + text + ")"; }
-};
-
-struct GdalDataset
-{
-  GDALDatasetH h = nullptr;
-  ~GdalDataset()
-  {
-    if (h)
-    {
-      GDALClose(h);
-    }
-  }
-};
 
 double footToMetre(const std::string& unit)
 {
@@ -293,19 +265,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
   double linear = 1.0;
   if (srs)
   {
-    const char* auth = OSRGetAuthorityName(srs, nullptr);
-    const char* code = OSRGetAuthorityCode(srs, nullptr);
-    if (auth && code)
-    {
-      out.crs = std::string(auth) + ":" + code;
-    }
-    else
-    {
-      char* wkt = nullptr;
-      OSRExportToWkt(srs, &wkt);
-      out.crs = wkt ? wkt : "unknown";
-      CPLFree(wkt);
-    }
+    out.crs = crsName(srs);
     if (!geographic)
     {
       linear = OSRGetLinearUnits(srs, nullptr);
@@ -358,8 +318,7 @@ std::string gdalHeader(GDALDatasetH ds, double fileSize, const TerrainReadOption
 std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions& opt,
   TerrainRaster& out, const std::function<void(double)>* progress)
 {
-  static std::once_flag once;
-  std::call_once(once, []() { GDALAllRegister(); });
+  registerGdal();
   GdalErrors errors;
   // Declared before the dataset, so that it is unlinked after the dataset is closed.
   const std::unique_ptr<VsiMemFile> mem(in.inMemory ? new VsiMemFile(in) : nullptr);
@@ -618,22 +577,42 @@ std::string readAny(const Input& in, const TerrainReadOptions& opt, TerrainRaste
   }
 }
 
-// A read, then the geographic lattice resampled to the local grid (header: size only).
+// A read, then the geographic lattice resampled to the local grid, then voids filled when
+// asked (header: size only).
 std::string readAndGrid(const Input& in, const TerrainReadOptions& opt, TerrainRaster& out,
   const std::function<void(double)>* progress)
 {
-  std::string problem = readAny(in, opt, out, progress);
-  if (problem.empty() && out.geographic)
+  if (opt.fillNodata)
   {
-    try
+    const std::string problem = checkFillOptions(opt.fillSearchDistance, opt.fillSmoothingIterations);
+    if (!problem.empty())
     {
-      problem = geoGrid(out, progress != nullptr);
+      return "cannot be read with " + problem;
     }
-    catch (const std::bad_alloc&)
+  }
+  // Filling: the read reports progress up to 0.7, the fill the rest.
+  const bool fill = opt.fillNodata && progress;
+  const std::function<void(double)> readPart = [progress](double f) { (*progress)(0.7 * f); };
+  const std::function<void(double)> fillPart = [progress](double f) { (*progress)(0.7 + 0.3 * f); };
+  std::string problem = readAny(in, opt, out, fill ? &readPart : progress);
+  try
+  {
+    std::vector<unsigned char> inside; // geographic: the source's footprint, when filling
+    if (problem.empty() && out.geographic)
     {
-      out.z = std::vector<float>();
-      problem = "needs more memory than is available";
+      problem = geoGrid(out, progress != nullptr, fill ? &inside : nullptr);
     }
+    if (problem.empty() && fill)
+    {
+      problem = fillNodata(out.z, out.nx, out.ny, opt.fillSearchDistance,
+        opt.fillSmoothingIterations, out.geographic ? &inside : nullptr, out.filled, fillPart);
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    out.z = std::vector<float>();
+    out.filled = std::vector<unsigned char>();
+    problem = "needs more memory than is available";
   }
   return problem;
 }

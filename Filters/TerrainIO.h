@@ -22,6 +22,10 @@ struct TerrainReadOptions
   double heightOffset = 0.0;
   double spacing = 1.0; // images without georeference
   bool terrainRGB = false;
+  // Void filling (TerrainFill.h), after any geographic resampling, on the final grid.
+  bool fillNodata = false;
+  double fillSearchDistance = 100.0; // samples
+  int fillSmoothingIterations = 0;
 };
 
 struct TerrainRaster
@@ -41,6 +45,7 @@ struct TerrainRaster
   double centralMeridian = 0.0;
   double lonStep = 0.0, latStep = 0.0;
   std::vector<float> z;          // nx * ny, row j = northwards, NaN = nodata
+  std::vector<unsigned char> filled; // fillNodata only: nx * ny, 1 where a void was filled
 };
 
 // Reads the header only (no sample is read; nothing large is allocated). Returns "" on

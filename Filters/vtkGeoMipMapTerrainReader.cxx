@@ -12,7 +12,9 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
+#include "TerrainFill.h"       // checkFillOptions, fillMemoryBytes
 #include "TerrainGeographic.h" // geographicToLocal, localToGeographic
 #include "TerrainIO.h"
 
@@ -31,6 +33,9 @@ struct vtkGeoMipMapTerrainReader::Internals
     opt.heightOffset = self->HeightOffset;
     opt.spacing = self->Spacing;
     opt.terrainRGB = self->TerrainRGB != 0;
+    opt.fillNodata = self->FillNodata != 0;
+    opt.fillSearchDistance = self->FillSearchDistance;
+    opt.fillSmoothingIterations = self->FillSmoothingIterations;
     return opt;
   }
 };
@@ -58,6 +63,16 @@ int vtkGeoMipMapTerrainReader::RequestInformation(
     vtkErrorMacro(<< "Cannot read '" << name << "': Spacing " << this->Spacing
                   << " is not finite and positive.");
     return 0;
+  }
+  if (this->FillNodata)
+  {
+    const std::string problem =
+      gmm::checkFillOptions(this->FillSearchDistance, this->FillSmoothingIterations);
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "Cannot read '" << name << "' with FillNodata on: " << problem << ".");
+      return 0;
+    }
   }
   // Header only: dimensions and georeference, without reading (or allocating) samples.
   gmm::TerrainRaster header;
@@ -106,7 +121,10 @@ int vtkGeoMipMapTerrainReader::RequestData(
     if (gmm::readTerrainHeader(name, this->Internal->Options(this), header).empty())
     {
       const double samples = static_cast<double>(header.nx) * header.ny;
-      const double need = samples * sizeof(float) * (header.geographic ? 3.0 : 2.0);
+      const double need = samples * sizeof(float) * (header.geographic ? 3.0 : 2.0) +
+        (this->FillNodata
+            ? gmm::fillMemoryBytes(header.nx, header.ny, this->FillSmoothingIterations)
+            : 0.0);
       const double have = this->MemoryLimit > 0 ? static_cast<double>(this->MemoryLimit)
                                                 : vtkGeoMipMapConversion::AvailableMemoryBytes();
       if (have > 0 && need > have)
@@ -144,6 +162,21 @@ int vtkGeoMipMapTerrainReader::RequestData(
     vtkWarningMacro(<< "Reading '" << name << "': every sample is nodata; nothing will be drawn.");
   }
   output->GetPointData()->SetScalars(heights);
+  if (this->FillNodata)
+  {
+    vtkNew<vtkUnsignedCharArray> filled;
+    filled->SetName("FilledNodata");
+    filled->SetNumberOfTuples(heights->GetNumberOfTuples());
+    if (raster.filled.size() == static_cast<std::size_t>(heights->GetNumberOfTuples()))
+    {
+      std::copy(raster.filled.begin(), raster.filled.end(), filled->GetPointer(0));
+    }
+    else
+    {
+      filled->FillValue(0); // defensive: a read with FillNodata on always sets the mask
+    }
+    output->GetPointData()->AddArray(filled);
+  }
 
   vtkFieldData* fd = output->GetFieldData();
   auto addString = [fd](const char* key, const std::string& value) {
@@ -172,10 +205,7 @@ int vtkGeoMipMapTerrainReader::RequestData(
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-// (lon0, lat0, central meridian) from an image's field data; false when absent.
-bool GeographicFrame(vtkImageData* image, double frame[3])
+bool vtkGeoMipMapTerrainReader::GetGeographicFrame(vtkImageData* image, double frame[3])
 {
   vtkFieldData* fd = image ? image->GetFieldData() : nullptr;
   vtkDataArray* origin = fd ? fd->GetArray("GeographicOrigin") : nullptr;
@@ -190,13 +220,12 @@ bool GeographicFrame(vtkImageData* image, double frame[3])
   frame[2] = meridian->GetComponent(0, 0);
   return true;
 }
-}
 
 bool vtkGeoMipMapTerrainReader::GeographicToLocal(
   vtkImageData* image, double lon, double lat, double xy[2])
 {
   double f[3];
-  if (!GeographicFrame(image, f))
+  if (!GetGeographicFrame(image, f))
   {
     return false;
   }
@@ -208,7 +237,7 @@ bool vtkGeoMipMapTerrainReader::LocalToGeographic(
   vtkImageData* image, double x, double y, double lonLat[2])
 {
   double f[3];
-  if (!GeographicFrame(image, f))
+  if (!GetGeographicFrame(image, f))
   {
     return false;
   }
@@ -226,4 +255,7 @@ void vtkGeoMipMapTerrainReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Spacing: " << this->Spacing << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "TerrainRGB: " << (this->TerrainRGB ? "On" : "Off") << "\n";
+  os << indent << "FillNodata: " << (this->FillNodata ? "On" : "Off") << "\n";
+  os << indent << "FillSearchDistance: " << this->FillSearchDistance << "\n";
+  os << indent << "FillSmoothingIterations: " << this->FillSmoothingIterations << "\n";
 }

@@ -62,6 +62,23 @@
  *   A GDAL raster without a geotransform is read the same way, rows north-up, with a
  *   warning (a GeoTIFF that lost its tags should not pass unnoticed).
  *
+ * Void filling (FillNodata, off by default): nodata samples that have a valid sample
+ * within FillSearchDistance samples are filled with GDAL's GDALFillNodata (gdal_alg.h):
+ * the nearest valid sample in each of four quadrants around the void sample (searched on
+ * the sample grid, Euclidean distance in sample steps), weighted by inverse distance, then
+ * FillSmoothingIterations passes of a 3x3 mean over the filled samples only. It runs on
+ * the output grid, after any geographic resampling, so every sample that is valid without
+ * filling keeps exactly the same value; nodes of a geographic raster's grid that lie
+ * outside the source's footprint (its curved corners) stay NaN, as do voids farther than
+ * the search distance from any valid sample. The filled samples are marked in the point
+ * array "FilledNodata" (unsigned char: 1 filled, 0 original or still nodata), present only
+ * when FillNodata is on: colour by it (SelectColorArray, a lookup table) or set those
+ * samples back to NaN to exclude them. Filled values are interpolated, not measured: a
+ * void 2 km wide over a ridge comes out as a smooth saddle. With FillNodata off the
+ * output is the same as without the feature. Bad parameters (a search distance that is
+ * not finite and positive, smoothing iterations outside 0..1000) fail the update with an
+ * error naming the file and the parameter.
+ *
  * Field data: "CRS" (string: "EPSG:xxxx", the WKT, or "none"), "SourceFormat" (GDAL driver
  * or OpenImageIO format name), "HeightUnit" (string), "GeographicOrigin" (2 doubles) and
  * "CentralMeridian" (1 double), both only for geographic rasters.
@@ -131,10 +148,26 @@ public:
 
   ///@{
   /**
+   * Void filling (see the class description). FillNodata: off by default.
+   * FillSearchDistance: how far, in samples, to look for valid samples (finite, > 0;
+   * default 100, as gdal_fillnodata). FillSmoothingIterations: 3x3 mean passes over the
+   * filled samples (0..1000, default 0).
+   */
+  vtkSetMacro(FillNodata, vtkTypeBool);
+  vtkGetMacro(FillNodata, vtkTypeBool);
+  vtkBooleanMacro(FillNodata, vtkTypeBool);
+  vtkSetMacro(FillSearchDistance, double);
+  vtkGetMacro(FillSearchDistance, double);
+  vtkSetMacro(FillSmoothingIterations, int);
+  vtkGetMacro(FillSmoothingIterations, int);
+  ///@}
+
+  ///@{
+  /**
    * Memory, in bytes, a read may take (0, default: the memory available on this machine
    * now). Before reading the samples the reader estimates what the read needs (the
    * heights twice while they are handed over, once more for a geographic raster's
-   * resampling) and refuses a file that does not fit, with an error naming the file, its
+   * resampling, and the masks and work rasters of void filling) and refuses a file that does not fit, with an error naming the file, its
    * size and the memory available.
    */
   vtkSetMacro(MemoryLimit, vtkTypeInt64);
@@ -150,6 +183,12 @@ public:
   static bool GeographicToLocal(vtkImageData* image, double lon, double lat, double xy[2]);
   static bool LocalToGeographic(vtkImageData* image, double x, double y, double lonLat[2]);
   ///@}
+
+  /**
+   * The geographic frame of an image this reader produced: (lon0, lat0, central meridian)
+   * from "GeographicOrigin" and "CentralMeridian". False (frame untouched) when absent.
+   */
+  static bool GetGeographicFrame(vtkImageData* image, double frame[3]);
 
   /**
    * The stated accuracy of the geographic frame (see the class description): the largest
@@ -171,6 +210,9 @@ protected:
   double Spacing = 1.0;
   vtkTypeBool TerrainRGB = 0;
   vtkTypeInt64 MemoryLimit = 0;
+  vtkTypeBool FillNodata = 0;
+  double FillSearchDistance = 100.0;
+  int FillSmoothingIterations = 0;
 
 private:
   vtkGeoMipMapTerrainReader(const vtkGeoMipMapTerrainReader&) = delete;

@@ -63,6 +63,18 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     : heightFormat == vtkGeoMipMapSampleTexture::UInt16                         ? O::UInt16Heights
                                                                                  : O::FloatHeights;
 
+  // The drape, whatever the colouring under it.
+  this->Shading.Drape = false;
+  if (in.Drape)
+  {
+    r.DrapeError = this->Drape.Update(win, in.Drape);
+    this->Shading.Drape = r.DrapeError.empty();
+  }
+  else if (this->Drape.HasData())
+  {
+    this->Drape.Release(win);
+  }
+
   this->Shading.Color = O::PropertyColor;
   if (!in.Color)
   {
@@ -98,7 +110,7 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
 size_t vtkGeoMipMapGPUTerrain::GetBytes() const
 {
   return this->Heights.GetBytes() + this->Slopes.GetBytes() + this->Colors.GetBytes() +
-    this->Table.GetBytes();
+    this->Table.GetBytes() + this->Drape.GetBytes();
 }
 
 void vtkGeoMipMapGPUTerrain::Bind()
@@ -109,10 +121,15 @@ void vtkGeoMipMapGPUTerrain::Bind()
   this->SlopesUnit = this->Lit && this->Slopes.HasData() ? this->Slopes.Activate() : -1;
   this->ColorsUnit = c == O::MapScalars || c == O::DirectColors ? this->Colors.Activate() : -1;
   this->TableUnit = c == O::MapHeights || c == O::MapScalars ? this->Table.Activate() : -1;
+  this->DrapeUnit = this->Shading.Drape ? this->Drape.Activate() : -1;
 }
 
 void vtkGeoMipMapGPUTerrain::Unbind()
 {
+  if (this->DrapeUnit >= 0)
+  {
+    this->Drape.Deactivate();
+  }
   if (this->TableUnit >= 0)
   {
     this->Table.Deactivate();
@@ -126,7 +143,7 @@ void vtkGeoMipMapGPUTerrain::Unbind()
     this->Slopes.Deactivate();
   }
   this->Heights.Deactivate();
-  this->HeightsUnit = this->SlopesUnit = this->ColorsUnit = this->TableUnit = -1;
+  this->HeightsUnit = this->SlopesUnit = this->ColorsUnit = this->TableUnit = this->DrapeUnit = -1;
 }
 
 //------------------------------------------------------------------------------
@@ -156,6 +173,13 @@ void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightf
   seti("gmmColors", this->ColorsUnit);
   seti("gmmScalars", this->ColorsUnit);
   seti("gmmColorTable", this->TableUnit);
+  seti("gmmDrape", this->DrapeUnit);
+  if (p->IsUniformUsed("gmmDrapeMap"))
+  {
+    float map[4];
+    this->Drape.GetMap(hf.worldX(0), hf.worldY(0), hf.dx, hf.dy, map);
+    p->SetUniform4f("gmmDrapeMap", map);
+  }
   set2i("gmmGridSize", hf.nx, hf.ny);
   setf("gmmInvGridX", 1.0 / hf.nx);
   set2i("gmmTileSize", this->Layout.tileW, this->Layout.tileH);
@@ -185,6 +209,7 @@ void vtkGeoMipMapGPUTerrain::Release(vtkWindow* win)
   this->Slopes.Release(win);
   this->Colors.Release(win);
   this->Table.Release(win);
+  this->Drape.Release(win);
 }
 
 void vtkGeoMipMapGPUTerrain::Forget()

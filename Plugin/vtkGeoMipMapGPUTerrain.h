@@ -4,7 +4,8 @@
  *
  * The heights (always), their slopes (while lit), a colouring array (another point array
  * through the lookup table, or RGB(A) colours) and the lookup table, all in one tile
- * layout (vtkGeoMipMapTextures.h). Update() uploads only what changed; Bind() / Unbind()
+ * layout (vtkGeoMipMapTextures.h); and a draped image (vtkGeoMipMapDrapeTexture), at its
+ * own resolution. Update() uploads only what changed; Bind() / Unbind()
  * hold texture units around a draw; SetUniforms() hands the shaders
  * (vtkGeoMipMapShaders.h) what they read. The shader options (height format, colouring,
  * layers, log scale) follow from what is stored.
@@ -19,6 +20,7 @@
 #include <string> // For std::string
 
 class vtkDataArray;
+class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkScalarsToColors;
 class vtkShaderProgram;
@@ -42,12 +44,14 @@ public:
     vtkDataArray* Color = nullptr; // colouring array, or null for the actor's colour
     bool DirectColors = false;  // Color holds unsigned char colours, not scalars
     vtkScalarsToColors* Lookup = nullptr; // for scalars, its range already set
+    vtkImageData* Drape = nullptr; // image draped over the terrain, or null
   };
   // What Update did.
   struct Result
   {
     std::string HeightsError; // the heights (or slopes) could not be stored: do not draw
     std::string ColorError;   // the colouring array could not be stored: actor's colour
+    std::string DrapeError;   // the drape could not be stored: drawn without it
     int Uploads = 0;          // arrays uploaded (heights, colouring)
     double UploadSeconds = 0.0;
   };
@@ -81,9 +85,10 @@ private:
   vtkGeoMipMapSampleTexture Slopes;
   vtkGeoMipMapSampleTexture Colors;
   vtkGeoMipMapColorTable Table;
+  vtkGeoMipMapDrapeTexture Drape;
   vtkGeoMipMapShaders::Options Shading;
   bool Lit = false;
-  int HeightsUnit = -1, SlopesUnit = -1, ColorsUnit = -1, TableUnit = -1;
+  int HeightsUnit = -1, SlopesUnit = -1, ColorsUnit = -1, TableUnit = -1, DrapeUnit = -1;
 };
 
 #endif

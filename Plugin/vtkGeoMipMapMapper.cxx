@@ -87,6 +87,9 @@ struct vtkGeoMipMapMapper::Internals
   uint64_t MirroredArena = 0;
   int PrimitiveRestart = -1; // GL_PRIMITIVE_RESTART_FIXED_INDEX available (-1: not asked)
 
+  vtkSmartPointer<vtkImageData> Drape;
+  std::string ReportedDrapeError; // said once, not every frame
+
   // x, y bounds of the valid samples of Terrain (found once per terrain).
   const gmm::Terrain* BoundsOf = nullptr;
   double ValidXY[4] = { 0, 0, 0, 0 };
@@ -143,6 +146,22 @@ void vtkGeoMipMapMapper::ModifiedIndicesOnly()
   {
     this->IndicesOnlyMTime = this->GetMTime();
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::SetDrapeImage(vtkImageData* image)
+{
+  if (this->Internal->Drape != image)
+  {
+    this->Internal->Drape = image;
+    this->Internal->ReportedDrapeError.clear();
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkGeoMipMapMapper::GetDrapeImage()
+{
+  return this->Internal->Drape;
 }
 
 //------------------------------------------------------------------------------
@@ -527,6 +546,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
       gpu.Lookup->Build();
     }
   }
+  gpu.Drape = in.Drape;
   const vtkGeoMipMapGPUTerrain::Result r = in.GPU.Update(win, gpu);
   this->NumberOfHeightUploads += r.Uploads;
   if (r.Uploads)
@@ -542,6 +562,15 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   {
     vtkErrorMacro("Cannot store the colouring array on the GPU (the actor's colour is used): "
       << r.ColorError);
+  }
+  if (r.DrapeError.empty())
+  {
+    in.ReportedDrapeError.clear();
+  }
+  else if (r.DrapeError != in.ReportedDrapeError)
+  {
+    vtkErrorMacro("Cannot drape the image (the terrain is drawn without it): " << r.DrapeError);
+    in.ReportedDrapeError = r.DrapeError;
   }
   return true;
 }
@@ -862,6 +891,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
+  os << indent << "DrapeImage: " << this->Internal->Drape.GetPointer() << "\n";
   os << indent << "NumberOfRenderedTriangles: " << this->GetNumberOfRenderedTriangles() << "\n";
   os << indent << "NumberOfVisibleBlocks: " << this->GetNumberOfVisibleBlocks() << "\n";
   os << indent << "NumberOfCulledBlocks: " << this->GetNumberOfCulledBlocks() << "\n";

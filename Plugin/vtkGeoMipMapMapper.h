@@ -36,8 +36,11 @@
  * (ColorMode default). Cell scalars are not supported (the surface takes the actor's
  * colour, with an error).
  *
- * Works as with vtkOpenGLPolyDataMapper: lighting, LUT colouring, a texture draped over
- * the extent (texture coordinates 0..1 over the samples), actor transforms, parallel
+ * Draped imagery: SetDrapeImage lays a georeferenced image (an orthophoto brought into
+ * the terrain's frame by vtkGeoMipMapImageDrape) over the terrain at its own resolution.
+ *
+ * Works as with vtkOpenGLPolyDataMapper: lighting, LUT colouring, a texture stretched over
+ * the extent (actor texture; texture coordinates 0..1 over the samples), actor transforms, parallel
  * projection, clipping planes, surface / wireframe / points representations and surface
  * with edges, several renderers and several render windows (the GPU data follow the
  * window being rendered), vtkPropPicker and vtkWorldPointPicker. Large coordinates: vertex
@@ -131,6 +134,24 @@ public:
 
   ///@{
   /**
+   * An image draped over the terrain, at its own resolution: a 2D vtkImageData with
+   * unsigned char RGB or RGBA point scalars whose points are the pixel centres in the
+   * terrain's data coordinates (x, y), as vtkGeoMipMapImageDrape makes from a
+   * georeferenced orthophoto. Each fragment takes the image's colour at its x, y
+   * (bilinear, mipmapped), over the terrain's own colouring by the image's alpha, and is
+   * then lit as usual; outside the image (or where alpha is 0) the terrain keeps its own
+   * colouring (scalars, lookup table or the actor's colour). The image is one texture: an
+   * image larger than GL_MAX_TEXTURE_SIZE (16384 here) is refused with an error and the
+   * terrain is drawn without it (vtkGeoMipMapImageDrape::SetMaximumSize resamples). The
+   * image is used as it is (update its pipeline first); a change of it (its MTime) is
+   * uploaded at the next render. Null (default): no drape.
+   */
+  void SetDrapeImage(vtkImageData* image);
+  vtkImageData* GetDrapeImage();
+  ///@}
+
+  ///@{
+  /**
    * Largest side, in texels, of one layer of the height texture; 0 (default) is the
    * OpenGL limit (GL_MAX_TEXTURE_SIZE). A DEM larger than this is split into layers with
    * no seam; a smaller value trades texture layers for smaller uploads.
@@ -212,7 +233,8 @@ public:
   ///@}
 
   /**
-   * Bytes held on the GPU: height, colour and lookup-table textures and the index buffer.
+   * Bytes held on the GPU: height, colour, lookup-table and drape textures and the index
+   * buffer.
    */
   vtkTypeInt64 GetGPUMemoryBytes() const;
 

@@ -90,6 +90,14 @@ const char* const kNormalBilinear =
   "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
 
+// A draped image at the fragment: texture coordinates are affine in the grid position,
+// which is affine in model x, y (vtkGeoMipMapDrapeTexture::GetMap); outside the image the
+// transparent border leaves the colour below.
+const char* const kDrape =
+  "uniform sampler2D gmmDrape;\n"
+  "uniform vec4 gmmDrapeMap; // st = grid position * xy + zw\n"
+  "vec4 gmmDrapeColor() { return texture(gmmDrape, gmmGridVSOutput * gmmDrapeMap.xy + gmmDrapeMap.zw); }\n";
+
 // Lookup-table colours: texel 0 below range, 1..n the bins, n + 1 above, n + 2 NaN.
 std::string ColorTable(const vtkGeoMipMapShaders::Options& o)
 {
@@ -153,7 +161,7 @@ std::string Options::Key() const
 {
   return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
     (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n") +
-    (this->LogScale ? "l" : "-");
+    (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
@@ -241,7 +249,8 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   const bool lit = fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos;
   const bool colored = o.Color != Options::PropertyColor;
   vtkShaderProgram::Substitute(fs, "//GMM::Dec",
-    FetchFunctions(o) + kQuad + (lit ? (o.SingleLayer ? kNormalBilinear : kNormal) : "") + ColorFunctions(o));
+    FetchFunctions(o) + kQuad + (lit ? (o.SingleLayer ? kNormalBilinear : kNormal) : "") +
+      ColorFunctions(o) + (o.Drape ? kDrape : ""));
   // The level-0 triangle under the fragment, where full-resolution values are interpolated
   // per fragment (colouring arrays; normals of DEMs in several layers).
   const bool triangle = (colored && o.Color != Options::MapHeights) || (lit && !o.SingleLayer);
@@ -253,6 +262,13 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
              "  ambientColor = ambientIntensity * gmmC.rgb;\n"
              "  diffuseColor = diffuseIntensity * gmmC.rgb;\n"
              "  opacity = opacityUniform * gmmC.a;\n";
+  }
+  if (o.Drape)
+  {
+    // Premultiplied by alpha (vtkGeoMipMapDrapeTexture): over the colour below, then lit.
+    color += "  vec4 gmmP = gmmDrapeColor();\n"
+             "  ambientColor = ambientColor * (1.0 - gmmP.a) + ambientIntensity * gmmP.rgb;\n"
+             "  diffuseColor = diffuseColor * (1.0 - gmmP.a) + diffuseIntensity * gmmP.rgb;\n";
   }
   vtkShaderProgram::Substitute(fs, "//GMM::Color::Impl", color);
   // Lit: VTK declared and normalised an interpolated normalVCVSOutput; replace its value.

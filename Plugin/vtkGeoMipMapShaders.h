@@ -13,7 +13,9 @@
  *   fragment's grid position (bilinearly filtered on a one-layer DEM, interpolated on the
  *   level-0 triangle under the fragment otherwise), so shading does not depend on the level
  *   drawn; a second scalar array or RGB(A) colours are interpolated on that triangle;
- *   colouring by height uses the drawn surface's height, interpolated from the vertices.
+ *   colouring by height uses the drawn surface's height, interpolated from the vertices;
+ *   a draped image (texture coordinates affine in the grid position) is laid over that
+ *   colour by its alpha, before lighting.
  * Not wrapped, not installed: private to geomipmap::Rendering.
  */
 #ifndef vtkGeoMipMapShaders_h
@@ -45,6 +47,7 @@ struct Options
   bool TextureCoordinates = false; // the actor is textured
   bool SingleLayer = true;         // the heights fit one texture layer
   bool LogScale = false;           // the lookup table maps log10 of the scalars
+  bool Drape = false;              // an image is draped over the colouring
 
   /** A short string that differs when the shader source must differ. */
   std::string Key() const;

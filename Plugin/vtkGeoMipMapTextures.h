@@ -17,6 +17,11 @@
  *
  * vtkGeoMipMapColorTable holds a lookup table as a 1D row of colours for the shader.
  *
+ * vtkGeoMipMapDrapeTexture holds an image draped over the terrain (an orthophoto brought
+ * into the terrain's frame, vtkGeoMipMapImageDrape) at its own resolution: one RGBA8 2D
+ * texture, premultiplied by alpha, mipmapped, bordered by transparent texels, with the
+ * affine map from the terrain's grid position to texture coordinates.
+ *
  * Both live in one OpenGL context; the mapper releases them when it changes window.
  * Not wrapped, not installed: private to geomipmap::Rendering.
  */
@@ -32,6 +37,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkScalarsToColors;
 class vtkTextureObject;
@@ -164,6 +170,44 @@ private:
   double Range[2] = { 0.0, 1.0 };
   int Entries = 0;
   bool LogScale = false;
+};
+
+class vtkGeoMipMapDrapeTexture
+{
+public:
+  vtkGeoMipMapDrapeTexture();
+  ~vtkGeoMipMapDrapeTexture();
+
+  /**
+   * Uploads `image` (2D, axis-aligned, unsigned char RGB or RGBA point scalars; pixel
+   * centres at its points) unless it is the one stored already. Returns "" or why it
+   * cannot be stored (larger than GL_MAX_TEXTURE_SIZE, wrong type); nothing is held then.
+   */
+  std::string Update(vtkOpenGLRenderWindow* win, vtkImageData* image);
+  bool HasData() const;
+  size_t GetBytes() const { return this->Bytes; }
+
+  /**
+   * Texture coordinates of the terrain's grid position g (sample i, j of a grid whose
+   * sample (0, 0) is at (x0, y0), spacing dx, dy): st = g * map[0..1] + map[2..3].
+   */
+  void GetMap(double x0, double y0, double dx, double dy, float map[4]) const;
+
+  int Activate();
+  void Deactivate();
+  void Release(vtkWindow* win);
+
+private:
+  vtkGeoMipMapDrapeTexture(const vtkGeoMipMapDrapeTexture&) = delete;
+  void operator=(const vtkGeoMipMapDrapeTexture&) = delete;
+
+  vtkNew<vtkTextureObject> Texture;
+  vtkImageData* Source = nullptr; // identity only, never dereferenced
+  vtkMTimeType SourceTime = 0;
+  double First[2] = { 0, 0 }; // centre of pixel (0, 0)
+  double Step[2] = { 1, 1 };  // pixel spacing (signed)
+  int Size[2] = { 0, 0 };
+  size_t Bytes = 0;
 };
 
 #endif

@@ -5,6 +5,8 @@ Usage: TestBenchQuick.py <path to geomipmap-bench> <scratch folder>. Checks:
 - exit status 0; frames.csv, summary.md and bench.png written, every method present;
 - brute force (the full-resolution mesh) measures 0 px on every frame;
 - ours measures at most its tau on every frame;
+- --fill-voids on a DEM with holes: ours draws fewer triangles; a fill option without it
+  is bad input;
 - a deliberately coarse mesh (every 16th sample) measures more than tau = 1 px on the
   same flight, through the same measure (vtkGeoMipMapScreenError) and camera set-up.
 """
@@ -30,6 +32,45 @@ if bad.returncode != 2 or "missing.tif" not in bad.stderr or "Traceback" in bad.
     failures.append(f"a missing DEM: exit {bad.returncode}, stderr {bad.stderr!r}")
 if p.returncode != 0:
     sys.exit(f"FAIL: exit status {p.returncode}\n{p.stdout}\n{p.stderr}")
+
+# --fill-voids reaches the benchmark's terrain: on a smooth DEM with holes (ESRI ASCII,
+# written here) ours draws fewer triangles with the voids filled; a fill option without
+# --fill-voids is bad input (exit 2, one line).
+import numpy as np  # noqa: E402
+
+ys, xs = np.mgrid[0:257, 0:257]
+z = 1000.0 + 300.0 * np.sin(xs / 40.0) * np.cos(ys / 55.0)
+for cx, cy, r in ((60, 60, 4), (150, 90, 9), (200, 200, 6), (90, 210, 3)):
+    z[np.hypot(xs - cx, ys - cy) <= r] = -9999.0
+holes = os.path.join(scratch, "holes.asc")
+with open(holes, "w") as f:
+    f.write("ncols 257\nnrows 257\nxllcorner 500000\nyllcorner 4000000\ncellsize 30\n"
+            "NODATA_value -9999\n")
+    for row in z:
+        f.write(" ".join("%.3f" % v for v in row) + "\n")
+mean_tri = {}
+for fill in (False, True):
+    folder = os.path.join(scratch, "filled" if fill else "voids")
+    q = subprocess.run([exe, "--dem", holes, "--synthetic", "", "--data-dir", "", "--methods",
+                        "ours", "--tau", "1", "--frames", "3", "--size", "320x180", "--out",
+                        folder] + (["--fill-voids"] if fill else []),
+                       capture_output=True, text=True, timeout=240)
+    if q.returncode != 0:
+        sys.exit(f"FAIL: --dem holes.asc{' --fill-voids' if fill else ''}: exit "
+                 f"{q.returncode}\n{q.stderr}")
+    with open(os.path.join(folder, "frames.csv"), newline="") as f:
+        tri = [int(r["triangles"]) for r in csv.DictReader(f) if r["method"] == "ours"]
+    mean_tri[fill] = sum(tri) / max(len(tri), 1)
+print(f"holes.asc, tau 1: ours draws {mean_tri[False]:.0f} triangles a frame with voids, "
+      f"{mean_tri[True]:.0f} filled")
+if not 0 < mean_tri[True] < mean_tri[False]:
+    failures.append(f"--fill-voids: {mean_tri[True]:.0f} triangles a frame, not fewer than "
+                    f"{mean_tri[False]:.0f} with voids")
+bad = subprocess.run([exe, "--fill-smoothing", "3", "--out", os.path.join(scratch, "bad")],
+                     capture_output=True, text=True, timeout=60)
+if bad.returncode != 2 or "--fill-smoothing needs --fill-voids" not in bad.stderr \
+        or len(bad.stderr.strip().splitlines()) != 1:
+    failures.append(f"--fill-smoothing alone: exit {bad.returncode}, stderr {bad.stderr!r}")
 for name in ("frames.csv", "summary.md", "bench.png"):
     path = os.path.join(scratch, name)
     if not os.path.isfile(path) or os.path.getsize(path) == 0:

@@ -8,7 +8,9 @@
 // and OpenImageIO are the system's (not instrumented).
 //
 // Checked: a read either fails with a message, or returns a raster whose size, spacing and
-// height count agree (and the header-only read agrees with the full read).
+// height count agree (and the header-only read agrees with the full read). The option byte's
+// top bit turns void filling on: then the valid samples must be those of the read without
+// filling, bit for bit, and the filled mask must mark exactly the samples it filled.
 #include "TerrainIO.h"
 
 #include <OpenImageIO/imageio.h>
@@ -16,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 namespace
@@ -49,6 +52,27 @@ void checkRaster(const gmm::TerrainRaster& r, bool withHeights, const std::strin
         violation("infinite height (nodata must be NaN)", path);
 }
 
+// A filled read against the same read without filling: every valid sample keeps its bits,
+// the mask marks exactly the samples that were NaN and are not any more.
+void checkFill(const gmm::TerrainBytes& file, gmm::TerrainReadOptions opt,
+  const gmm::TerrainRaster& filled, const std::string& path)
+{
+  opt.fillNodata = false;
+  gmm::TerrainRaster plain;
+  if (!gmm::readTerrain(file, opt, plain, [](double) {}).empty())
+    violation("the read succeeds with filling but fails without", path);
+  if (plain.z.size() != filled.z.size() || filled.filled.size() != filled.z.size())
+    violation("filled read: heights or mask of another size", path);
+  for (std::size_t k = 0; k < plain.z.size(); ++k)
+  {
+    const float a = plain.z[k], b = filled.z[k];
+    if (!std::isnan(a) && std::memcmp(&a, &b, sizeof a) != 0)
+      violation("filling changed a valid sample", path);
+    if (filled.filled[k] != (std::isnan(a) && !std::isnan(b) ? 1 : 0))
+      violation("the filled mask disagrees with the heights", path);
+  }
+}
+
 } // namespace
 
 // Bytes that are no image of the format their name says: OpenImageIO would then open them
@@ -77,6 +101,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   opt.heightScale = ((sel >> 4) & 1) ? -0.5 : 1.0;
   opt.heightOffset = ((sel >> 5) & 1) ? 100.0 : 0.0;
   opt.spacing = ((sel >> 6) & 1) ? 30.0 : 1.0;
+  opt.fillNodata = (sel >> 7) & 1;
+  opt.fillSearchDistance = 8.0;
+  opt.fillSmoothingIterations = 1;
 
   gmm::TerrainRaster header;
   const std::string headerErr = gmm::readTerrainHeader(file, opt, header);
@@ -94,6 +121,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       violation("header read failed (" + headerErr + ") but the full read succeeded", path);
     if (header.nx != full.nx || header.ny != full.ny)
       violation("header and full read disagree on the size", path);
+    if (opt.fillNodata)
+      checkFill(file, opt, full, path);
   }
   return 0;
 }

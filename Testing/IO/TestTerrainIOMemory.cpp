@@ -5,6 +5,7 @@
 // the file path's messages (and a null pointer its own); no /vsimem/ file is left behind.
 #include "TerrainIO.h"
 
+#include "GdalTestRaster.h"    // writeGdalRaster
 #include "GeoMipMapTestData.h" // DataDir, DataRequired
 
 #include <OpenImageIO/imageio.h>
@@ -126,38 +127,29 @@ protected:
   std::string gdalFile(const char* driver, const std::string& name, GDALDataType type,
     bool geographic, const char* nodata)
   {
-    const int nx = 41, ny = 29;
-    GDALDatasetH src = GDALCreate(GDALGetDriverByName("MEM"), "", nx, ny, 1, type, nullptr);
-    std::vector<double> v(static_cast<std::size_t>(nx) * ny);
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        v[static_cast<std::size_t>(j) * nx + i] = 500 + 100 * std::sin(0.2 * i) * std::cos(0.15 * j);
-    GDALRasterBandH band = GDALGetRasterBand(src, 1);
+    gmmtest::GdalRaster r;
+    r.driver = driver;
+    r.type = type;
+    r.nx = 41;
+    r.ny = 29;
+    r.values.resize(static_cast<std::size_t>(r.nx) * r.ny);
+    for (int j = 0; j < r.ny; ++j)
+      for (int i = 0; i < r.nx; ++i)
+        r.values[static_cast<std::size_t>(j) * r.nx + i] =
+          500 + 100 * std::sin(0.2 * i) * std::cos(0.15 * j);
     if (nodata)
     {
-      v[3] = std::atof(nodata);
-      GDALSetRasterNoDataValue(band, std::atof(nodata));
+      r.values[3] = r.nodata = std::atof(nodata);
+      r.hasNodata = true;
     }
-    EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float64, 0, 0),
-      CE_None);
-    double gt[6] = { geographic ? 1.0 : 500000.0, geographic ? 1.0 / 1200 : 30.0, 0,
-      geographic ? 43.0 : 4000000.0, 0, geographic ? -1.0 / 1200 : -30.0 };
-    GDALSetGeoTransform(src, gt);
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-    OSRImportFromEPSG(srs, geographic ? 4326 : 32610);
-    OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
-    GDALSetSpatialRef(src, srs);
-    OSRDestroySpatialReference(srs);
-    const std::string path = dir_ + "/" + name;
-    GDALDatasetH out = GDALCreateCopy(
-      GDALGetDriverByName(driver), path.c_str(), src, FALSE, nullptr, nullptr, nullptr);
-    EXPECT_NE(out, nullptr) << driver;
-    if (out)
+    r.geographic = geographic;
+    if (geographic)
     {
-      GDALClose(out);
+      r.west = 1.0;
+      r.north = 43.0;
+      r.step = 1.0 / 1200;
     }
-    GDALClose(src);
-    return path;
+    return gmmtest::writeGdalRaster(dir_ + "/" + name, r);
   }
 
   // An image written with OpenImageIO: nch channels of type t, 37 x 23.

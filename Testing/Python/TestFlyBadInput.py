@@ -1,7 +1,7 @@
 """geomipmap-fly on bad input: every case exits non-zero with ONE line on stderr.
 
 Missing / empty / garbage DEM files, a DEM the reader refuses, waypoints outside the
-terrain or malformed, and nonsense option values. No case may print a traceback or VTK's
+terrain or malformed, a --texture that cannot be placed, and nonsense option values. No case may print a traceback or VTK's
 multi-line error dumps. Malformed waypoint files (issue #16 item 6) must also exit 2
 ("bad input", not 1 "internal error") with a line naming the file and the problem: the
 CSV line or the JSON waypoint number where it is. Every malformed waypoint file of
@@ -11,6 +11,9 @@ command (those that used to end in an internal error).
 
 import os
 
+import numpy as np
+
+import demfiles
 from flytestutil import bad_dem_files, check, run, setup
 from gmmdata import optional_data_file
 from waypointcases import BAD, THROUGH_COMMAND, write
@@ -33,6 +36,9 @@ geo_on_synth = os.path.join(out, "geo.csv")
 with open(geo_on_synth, "w") as f:
     f.write("lon,lat,agl\n1.0,42.1,100\n1.1,42.2,100\n")
 
+
+ortho = demfiles.tiff(os.path.join(out, "ortho.tif"), np.zeros((8, 8, 3), np.uint8), rgb=True)
+nocrs = demfiles.tiff(os.path.join(out, "nocrs.tif"), np.zeros((8, 8), np.float32), georef=None)
 
 small = ["--synthetic-size", "65", "--frames", "2", "--size", "64x64", "--out",
          os.path.join(out, "o")]
@@ -61,8 +67,31 @@ cases = {
     "unknown option": ["--bogus"],
     "missing texture": ["--color", "texture:" + os.path.join(out, "nope.png")] + small,
     "colour name": ["--color", "rainbow"],
+    "fill distance without --fill-voids": ["--fill-distance", "10"] + small,
+    "fill smoothing without --fill-voids": ["--fill-smoothing", "2"] + small,
+    "fill distance -1": ["--fill-voids", "--fill-distance", "-1"] + small,
+    "fill distance inf": ["--fill-voids", "--fill-distance", "inf"] + small,
+    "fill smoothing 1001": ["--fill-voids", "--fill-smoothing", "1001"] + small,
+    "fill smoothing -1": ["--fill-voids", "--fill-smoothing", "-1"] + small,
+    "texture missing": ["--texture", os.path.join(out, "nope.tif")] + small,
+    "texture and --color texture": ["--texture", garbage, "--color", "texture:" + garbage] + small,
+    "texture on the synthetic terrain": ["--texture", ortho] + small,
+    "texture not an image": ["--texture", garbage, "--dem", nocrs] + small[2:],
+    "texture on a DEM without CRS": ["--texture", ortho, "--dem", nocrs] + small[2:],
+    "texture size 20000": ["--texture-size", "20000"] + small,
 }
-expected = {}  # case -> words its error line must hold
+expected = {  # case -> words its error line must hold
+    "fill distance without --fill-voids": ["--fill-distance", "needs --fill-voids"],
+    "fill smoothing without --fill-voids": ["--fill-smoothing", "needs --fill-voids"],
+    "fill distance -1": ["--fill-distance"],
+    "fill smoothing 1001": ["--fill-smoothing", "0..1000"],
+    "texture missing": ["nope.tif"],
+    "texture and --color texture": ["not both"],
+    "texture on the synthetic terrain": ["--texture needs a georeferenced DEM"],
+    "texture not an image": [garbage, "not an image"],
+    "texture on a DEM without CRS": [ortho, "no CRS"],
+    "texture size 20000": ["16384"],
+}
 for name in THROUGH_COMMAND:
     filename, content, words = BAD[name]
     path = write(out, filename, content)
@@ -80,7 +109,7 @@ for name, args in cases.items():
     lines = [ln for ln in se.splitlines() if ln.strip()]
     ok = (rc != 0 and len(lines) == 1 and "Traceback" not in se
           and lines[0].startswith("geomipmap-fly: error:"))
-    if name in expected:  # a bad waypoint file: exit 2 and a line that says where and what
+    if name in expected:  # exit 2 and a line that says where and what
         missing = [w for w in expected[name] if w not in lines[0]] if lines else ["(no line)"]
         ok = ok and rc == 2 and not missing
         if missing:

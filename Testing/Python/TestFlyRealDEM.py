@@ -6,7 +6,8 @@ Uses mt_rainier_90m.tif (SRTM3 N46W122, EPSG:4326, voids) from the shared data f
 this process (flytestutil.measured_flight: the command's own code) so that every 5th frame's
 drawn triangles can be measured against the full-resolution DEM, independently of the
 engine's bound; the other flights run the command. Checks: exit 0, 10 CSV rows, frames
-showing terrain, the measured screen error within tau; the lon/lat -> local metre
+showing terrain, the measured screen error within tau, and with --fill-voids the same
+within tau with fewer triangles; the lon/lat -> local metre
 conversion against GeographicLib's geodesic distances; JSON waypoints with absolute
 altitudes; a waypoint outside the tile.
 """
@@ -48,6 +49,21 @@ _, _, var, terrain = png_stats(pngs[0])
 check(var > 20.0 and terrain > 0.3, f"{pngs[0]}: variance {var:.1f}, terrain {terrain:.0%}")
 check("within tau" in so, f"summary does not certify the error:\n{so}")
 check_measured(frames, rows, tau=float(tau))
+
+# --fill-voids: the same flight over the tile with its voids filled. Blocks touching a
+# void no longer stay at full resolution, so fewer triangles are drawn at the same tau;
+# what is drawn still measures within tau (against the filled heights).
+rc, so, se, filled = measured_flight(main_flight + ["--fill-voids", "--out",
+                                                    os.path.join(out, "filled")], every=5)
+check(rc == 0, f"--fill-voids: exit {rc}: {se.strip()}")
+filled_rows = read_csv(os.path.join(out, "filled", "flight.csv"))
+check(len(filled_rows) == 10, f"--fill-voids: expected 10 rows, got {len(filled_rows)}")
+check_measured(filled, filled_rows, tau=float(tau))
+tri_voids = sum(int(r["triangles"]) for r in rows)
+tri_filled = sum(int(r["triangles"]) for r in filled_rows)
+print(f"--fill-voids: {tri_filled} triangles over the flight against {tri_voids} with voids "
+      f"({100.0 * tri_filled / tri_voids:.1f} %)")
+check(tri_filled < tri_voids, "--fill-voids draws fewer triangles at the same tau")
 
 # Conversion check: waypoints go through the reader's own frame (flight.GeoFrame ->
 # vtkGeoMipMapTerrainReader.GeographicToLocal); checked against facts from outside: the

@@ -25,7 +25,7 @@ from matplotlib.path import Path
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from geomipmap import vtkGeoMipMapTerrainReader
-from gmmtestutil import ErrorCatcher, check, data_file, resampling_mismatch, update
+from gmmtestutil import check, data_file, read_dem, resampling_mismatch
 
 A, F = 6378137.0, 1.0 / 298.257223563
 E2 = F * (2 - F)
@@ -38,13 +38,7 @@ def radii(lat_deg):
 
 
 def read(path, **opts):
-    r = vtkGeoMipMapTerrainReader()
-    r.SetFileName(path)
-    for k, v in opts.items():
-        getattr(r, "Set" + k)(v)
-    errors = ErrorCatcher(r)
-    check(update(r), "%s reads (errors: %s)" % (path, errors.messages))
-    img = r.GetOutput()
+    _, img = read_dem(path, **opts)
     arr = img.GetPointData().GetScalars()
     check(arr is not None and arr.GetName() == "Elevation", "active scalars named Elevation")
     check(arr.GetDataType() == 10, "Elevation is float32")  # VTK_FLOAT

@@ -19,7 +19,8 @@ _SAMPLE = {"uint8": (8, 1), "int16": (16, 2), "uint16": (16, 1), "int32": (32, 2
 
 def tiff(path, z, georef=(500000.0, 4000000.0, 30.0), nodata=None, width=None, height=None,
          compression=1, rgb=False, geographic=False):
-    """Writes z (ny x nx array, row 0 = north; ny x nx x 3 uint8 when rgb) as a TIFF.
+    """Writes z (ny x nx array, row 0 = north; ny x nx x 3 uint8 when rgb, or ny x nx x 4
+    for RGB + an (unassociated) alpha channel) as a TIFF.
 
     georef: (west, north, pixel size) of the upper-left corner, or None for a plain TIFF;
     in UTM zone 10N metres, or in WGS 84 lon/lat degrees (EPSG:4326) when geographic.
@@ -27,7 +28,7 @@ def tiff(path, z, georef=(500000.0, 4000000.0, 30.0), nodata=None, width=None, h
     """
     z = np.ascontiguousarray(z)
     ny, nx = z.shape[:2]
-    spp = 3 if rgb else 1
+    spp = (z.shape[2] if z.ndim == 3 else 3) if rgb else 1
     bits, fmt = _SAMPLE[z.dtype.name]
     pixels = z.astype(z.dtype.newbyteorder("<")).tobytes()
     entries = [
@@ -43,6 +44,8 @@ def tiff(path, z, georef=(500000.0, 4000000.0, 30.0), nodata=None, width=None, h
         (284, "SHORT", [1]),
         (339, "SHORT", [fmt] * spp),
     ]
+    if spp == 4:
+        entries.insert(-1, (338, "SHORT", [2]))  # ExtraSamples: unassociated alpha
     if georef is not None:
         west, north, size = georef
         entries += [

@@ -39,6 +39,20 @@ def update(alg):
     return alg.GetExecutive().Update() == 1
 
 
+def read_dem(path, **options):
+    """Runs a vtkGeoMipMapTerrainReader on `path` with Set<Name>(value) for each option;
+    checks (check()) that it reads without an error; returns (reader, output image)."""
+    from geomipmap import vtkGeoMipMapTerrainReader
+
+    r = vtkGeoMipMapTerrainReader()
+    r.SetFileName(path)
+    for key, value in options.items():
+        getattr(r, "Set" + key)(value)
+    errors = ErrorCatcher(r)
+    check(update(r), "%s %s reads (errors: %s)" % (path, options or "", errors.messages))
+    return r, r.GetOutput()
+
+
 def max_rss_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 

@@ -79,6 +79,9 @@ def add_terrain_options(parser, dem_positional=False):
                    help="sample spacing in metres for images without georeference "
                    "(and the synthetic terrain, default 30)")
     g.add_argument("--terrain-rgb", action="store_true", help="decode an RGB PNG as terrain-RGB")
+    from . import terrain  # (terrain imports this module)
+
+    terrain.add_fill_arguments(g)
     g.add_argument("--synthetic-size", type=positive(int, 2, strict=False), default=1025,
                    help="synthetic terrain samples per side (default 1025)")
     g.add_argument("--seed", type=positive(int, 0, strict=False), default=1,
@@ -87,8 +90,9 @@ def add_terrain_options(parser, dem_positional=False):
 
 
 def add_rendering_options(parser, size=(1280, 720)):
-    """The rendering options: --tau, --block-size, --size, --color, --no-lighting (read by
-    scene.Scene.from_args); returns the group so that a tool can add its own."""
+    """The rendering options: --tau, --block-size, --size, --color, --texture,
+    --texture-size, --no-lighting (read by scene.Scene.from_args); returns the group so that
+    a tool can add its own."""
     g = parser.add_argument_group("rendering")
     g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
                    help="pixel error bound (default 1)")
@@ -98,7 +102,14 @@ def add_rendering_options(parser, size=(1280, 720)):
     g.add_argument("--size", type=window_size, default=size,
                    help=f"window WxH (default {size[0]}x{size[1]})")
     g.add_argument("--color", type=colour, default="elevation",
-                   help="'elevation' (default) or 'texture:FILE.png' (draped over the extent)")
+                   help="'elevation' (default) or 'texture:FILE.png' (stretched over the extent)")
+    g.add_argument("--texture", metavar="FILE", help="drape a georeferenced image (GeoTIFF "
+                   "orthophoto, any GDAL raster with RGB bands) over the terrain by its "
+                   "coordinates, reprojected when its CRS differs from the DEM's; outside it "
+                   "the terrain keeps --color")
+    g.add_argument("--texture-size", type=positive(int, 1, strict=False), default=8192,
+                   metavar="PIXELS", help="resample a --texture larger than this a side "
+                   "(default 8192; at most 16384, the OpenGL texture limit)")
     g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
     return g
 
@@ -113,6 +124,20 @@ def check_common(args):
     texture = args.color.split(":", 1)[1] if args.color.startswith("texture:") else None
     if texture and not os.path.isfile(texture):
         raise AppError(f"texture image not found: {texture}")
+    if args.texture:
+        if args.color != "elevation":
+            raise AppError("give --texture (placed by its georeference) or --color texture:FILE "
+                           "(stretched over the extent), not both")
+        if not os.path.isfile(args.texture):
+            raise AppError(f"texture image not found: {args.texture}")
+        if not args.dem:
+            raise AppError("--texture needs a georeferenced DEM: the synthetic terrain has no "
+                           "coordinates to place the image by")
+    if args.texture_size > 16384:
+        raise AppError(f"--texture-size must be at most 16384, got {args.texture_size}")
+    from . import terrain  # (terrain imports this module)
+
+    terrain.fill_options(args)  # a fill option without --fill-voids, or out of range
     if not os.environ.get("DISPLAY"):
         raise AppError("no X display (DISPLAY is unset): VTK here renders through X; "
                        "run under xvfb-run -a")

@@ -23,15 +23,24 @@ class VTKMessages:
         self.window = vtkStringOutputWindow()
         vtkOutputWindow.SetInstance(self.window)
         self.errors = []
+        self.warnings = []
 
     def observe(self, algorithm):
-        """Record ErrorEvents of `algorithm` (and of its executive) in self.errors."""
+        """Record ErrorEvents of `algorithm` (and of its executive) in self.errors, and its
+        WarningEvents in self.warnings (unobserved, VTK's logger would print them)."""
 
         def on_error(_obj, _event, calldata=None):
             self.errors.append(calldata if calldata else "unknown VTK error")
 
+        def on_warning(_obj, _event, calldata=None):
+            line = one_line(calldata or "")
+            if line and line not in self.warnings:
+                self.warnings.append(line)
+
         on_error.CallDataType = VTK_STRING  # the message comes as calldata
+        on_warning.CallDataType = VTK_STRING
         algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
+        algorithm.AddObserver(vtkCommand.WarningEvent, on_warning)
         executive = algorithm.GetExecutive()
         if executive is not None:
             executive.AddObserver(vtkCommand.ErrorEvent, on_error)

@@ -40,7 +40,9 @@ class Scene:
 
     image, heights: the terrain (terrain.load_terrain). block_size, tau: the mapper's
     block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
-    "texture:FILE.png" (draped over the extent). size: the window's (width, height).
+    "texture:FILE.png" (stretched over the extent). drape: a georeferenced image
+    (orthophoto) laid over that colouring by its coordinates (vtkGeoMipMapImageDrape),
+    resampled to at most drape_size pixels a side. size: the window's (width, height).
     on_screen: a window on the display instead of off-screen rendering. title: the
     window's name. messages: VTKMessages for errors (texture reading). window: a render
     window to add the terrain renderer to (one that showed loading progress), else a new
@@ -50,7 +52,7 @@ class Scene:
 
     def __init__(self, image, heights, block_size=64, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
-                 messages=None, window=None):
+                 messages=None, window=None, drape=None, drape_size=8192):
         import geomipmap
 
         self.messages = messages or VTKMessages()
@@ -61,6 +63,8 @@ class Scene:
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)
         self._colour(heights, color)
+        if drape:
+            self._drape(image, drape, drape_size)
         prop = self.actor.GetProperty()
         if not lighting:
             prop.LightingOff()
@@ -90,7 +94,8 @@ class Scene:
     def from_args(cls, image, heights, args, **kw):
         """A Scene with the rendering options of command.add_rendering_options."""
         return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
-                   lighting=not args.no_lighting, size=args.size, **kw)
+                   lighting=not args.no_lighting, size=args.size, drape=args.texture,
+                   drape_size=args.texture_size, **kw)
 
     def _colour(self, heights, spec):
         if spec == "elevation":
@@ -122,6 +127,25 @@ class Scene:
         self.texture_reader = reader
         self.actor.SetTexture(tex)
         self.mapper.ScalarVisibilityOff()
+
+    def _drape(self, image, path, size):
+        """Lay the georeferenced image at `path` over the terrain (AppError naming it when
+        it cannot be placed: no georeference, a terrain without CRS, ...)."""
+        import geomipmap
+
+        if not os.path.isfile(path):
+            raise AppError(f"texture image not found: {path}")
+        drape = geomipmap.vtkGeoMipMapImageDrape()
+        self.messages.observe(drape)
+        drape.SetFileName(path)
+        drape.SetTerrain(image)
+        drape.SetMaximumSize(size)
+        ok = drape.GetExecutive().Update()
+        err = self.messages.first_error()
+        if not ok or err:
+            raise AppError(err or f"cannot drape {path}")
+        self.drape = drape  # its output is the mapper's drape image
+        self.mapper.SetDrapeImage(drape.GetOutput())
 
     def _sun(self):
         """A sun from the north-west, 40 degrees up (relief reads as in a shaded map)."""

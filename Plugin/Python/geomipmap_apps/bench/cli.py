@@ -16,7 +16,7 @@ import os
 import shlex
 import sys
 
-from .. import command
+from .. import command, terrain
 from ..errors import AppError
 from . import report
 from .run import run_dem
@@ -47,6 +47,7 @@ def build_parser():
     p.add_argument("--data-dir", default=os.environ.get("GEOMIPMAP_DATA_DIR", "../shared/data"),
                    help="every DEM in this folder is added when it exists (default "
                         "$GEOMIPMAP_DATA_DIR or ../shared/data); '' for none")
+    terrain.add_fill_arguments(p)
     p.add_argument("--synthetic", type=_list(int, True), default=[4097, 16385], metavar="N,N",
                    help="synthetic DEM sizes (default 4097,16385; '' for none)")
     p.add_argument("--tau", type=_list(float), default=[0.5, 1, 2, 4, 8], metavar="T,T",
@@ -104,6 +105,7 @@ def main(argv=None):
         bad = [m for m in methods if m not in METHODS]
         if bad:
             raise AppError(f"--methods: unknown {','.join(bad)} (choose from {','.join(METHODS)})")
+        args.fill = terrain.fill_options(args)
         if args.frames < 1:
             raise AppError(f"--frames must be >= 1, got {args.frames}")
         if args.replot:

@@ -65,7 +65,7 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
     t0 = time.perf_counter()
     try:
         image, heights = load_terrain(dem=path, synthetic_size=n or 0, messages=messages,
-                                      **settings)
+                                      fill=args.fill, **settings)
     except AppError as e:
         skip("all", f"cannot load: {e}")
         return

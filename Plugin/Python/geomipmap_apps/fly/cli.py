@@ -8,8 +8,9 @@ exit status 2 (1 for an unexpected internal error), never a traceback.
 import argparse
 import glob
 import os
+import sys
 
-from .. import command, video
+from .. import command, terrain, video
 from ..errors import AppError, VTKMessages
 
 PROG = "geomipmap-fly"
@@ -31,6 +32,8 @@ and lines starting with # are ignored.
 examples:
   geomipmap-fly                                    # orbit over synthetic terrain
   geomipmap-fly --dem tile.hgt --clearance 300 --seconds 10 --fps 30 --video tile.mp4
+  geomipmap-fly --dem srtm_with_voids.tif --fill-voids --fill-distance 50
+  geomipmap-fly --dem dem_utm.tif --texture ortho_lonlat.tif --pitch 40
   geomipmap-fly --dem dem.tif --waypoints route.csv --tau 2 --every 10 --size 1920x1080
 
 output: DIR/frame_NNNNN.png, DIR/flight.csv (frame, time_s, lod_ms, render_ms, triangles,
@@ -106,7 +109,7 @@ def fly(args):
     """Everything after option parsing; returns the summary text."""
     from geomipmap import flight
 
-    from .. import scene, terrain
+    from .. import scene
     from . import report
 
     messages = VTKMessages()
@@ -163,6 +166,8 @@ def fly(args):
         log.close()
     if movie:
         movie.close()
+    for line in messages.warnings:  # e.g. a DEM without georeference, a photo without CRS
+        print(f"{PROG}: warning: {line}", file=sys.stderr)
     where = [f"CSV: {os.path.abspath(csv_name)}"]
     where.append(f"frames: {written} PNG in {os.path.abspath(args.out)}" if written
                  else "frames: none written (--no-frames)")
