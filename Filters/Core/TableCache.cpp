@@ -81,6 +81,17 @@ struct FileHeader
 };
 #pragma pack(pop)
 
+// The checksum a file stores after its data: the header, then the three arrays in order.
+uint64_t checksum(const FileHeader& h, const ErrorTable& t)
+{
+  uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
+  for (const std::vector<float>* v : { &t.ownError, &t.ownErrorExact, &t.stripError })
+  {
+    sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
+  }
+  return sum;
+}
+
 // The table's level count for a quadtree, as buildErrorTable derives it.
 int tableLevels(const Quadtree& qt)
 {
@@ -210,12 +221,7 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
     out = ErrorTable();
     return path + ": read failed";
   }
-  uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
-  for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError })
-  {
-    sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
-  }
-  if (sum != stored)
+  if (checksum(h, out) != stored)
   {
     out = ErrorTable();
     return path + ": checksum mismatch (corrupt)";
@@ -254,11 +260,7 @@ std::string writeTableCache(const std::string& path, const TableCacheKey& key, c
   h.levels = table.levels;
   h.pairs = table.pairs;
   h.blocks = table.levels > 0 ? static_cast<int32_t>(table.ownError.size() / table.levels) : 0;
-  uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
-  for (const std::vector<float>* v : { &table.ownError, &table.ownErrorExact, &table.stripError })
-  {
-    sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
-  }
+  const uint64_t sum = checksum(h, table);
   // A private temporary name in the same directory, then an atomic rename.
   std::random_device rd;
   const std::string tmp = path + ".tmp" + hex((static_cast<uint64_t>(rd()) << 32) ^ rd());
