@@ -41,7 +41,13 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   stats_ = FrameStats();
   drawnConfig_.assign(blocks, notDrawn());
   drawnList_.clear();
-  arena_.reset(blocks);
+  // Slots: blocks first, then quadtree nodes drawn whole (slot blocks + node).
+  const int nodes = static_cast<int>(terrain_->qt.nodes.size());
+  arena_.reset(blocks + nodes);
+  nodeDrawn_.assign(nodes, 0);
+  nodeNow_.assign(nodes, 0);
+  drawnMerged_.clear();
+  nodeScratch_ = NodeScratch();
   indices_.clear();
   indicesCurrent_ = true;
 }
@@ -62,6 +68,13 @@ const FrameStats& Engine::update(const View& view, double tau)
   }
   const Terrain& t = *terrain_;
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
+  if (mergedNodes_)
+  {
+    const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
+    const BoxProjector projector(view, toWorld, metric_);
+    selectHierarchically(&frustum, [&](const Box& b) { return projector.factor(b); }, tau);
+    return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
+  }
   cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_, visibleList_);
   projectionFactors(t.qt, view, toWorld, visibleList_, metric_, factor_);
   selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
@@ -104,8 +117,24 @@ const FrameStats& Engine::updateForError(double maxError)
     return finishFrame(nullptr);
   }
   // The table holds stored-height errors; the bound is in the scaled surface's units.
+  if (mergedNodes_)
+  {
+    selectHierarchically(nullptr, [](const Box&) { return 1.0; }, maxError / heightScale_);
+    return finishFrame(nullptr, &visibleList_, &nodeSelection_.merged);
+  }
   selectLevelsForError(terrain_->qt, terrain_->table, maxError / heightScale_, levels_);
   return finishFrame(nullptr);
+}
+
+void Engine::selectHierarchically(
+  const Frustum* frustum, const std::function<double(const Box&)>& factorOf, double tau)
+{
+  const Terrain& t = *terrain_;
+  selectNodes(t.qt, t.table, frustum, factorOf, tau, nodeSelection_, nodeScratch_, selectScratch_);
+  // The engine's per-block lists take the selection's (swapped: both are rebuilt per frame).
+  levels_.swap(nodeSelection_.levels);
+  factor_.swap(nodeSelection_.factor);
+  visibleList_.swap(nodeSelection_.blocks);
 }
 
 const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
@@ -138,12 +167,61 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
   return finishFrame(nullptr);
 }
 
-const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates)
+bool Engine::finishMergedNodes(
+  const std::vector<int>* merged, const std::vector<double>* mergedFactor, FrameStats& s)
+{
+  const Terrain& t = *terrain_;
+  const int blocks = t.qt.blockCount();
+  bool changed = false;
+  static const std::vector<int> none;
+  const std::vector<int>& now = merged ? *merged : none;
+  for (int n : now)
+  {
+    nodeNow_[n] = 1;
+  }
+  for (int n : drawnMerged_)
+  {
+    if (!nodeNow_[n])
+    {
+      arena_.assign(blocks + n, nullptr, 0);
+      nodeDrawn_[n] = 0;
+      changed = true;
+    }
+  }
+  for (std::size_t k = 0; k < now.size(); ++k)
+  {
+    const int n = now[k];
+    nodeNow_[n] = 0;
+    const QuadtreeNode& node = t.qt.nodes[n];
+    ++s.mergedNodes;
+    s.visibleBlocks += (node.colEnd - node.colBegin) * (node.rowEnd - node.rowBegin);
+    const double e = t.table.mergedError[n];
+    s.maxGeometricError = std::max(s.maxGeometricError, e * heightScale_);
+    if (mergedFactor && e > 0.0)
+    {
+      s.maxScreenError = std::max(s.maxScreenError, e * (*mergedFactor)[k]);
+    }
+    if (!nodeDrawn_[n])
+    {
+      blockScratch_.clear();
+      emitMergedNode(t.hf, t.qt, n, blockScratch_);
+      arena_.assign(blocks + n, blockScratch_.data(), blockScratch_.size());
+      nodeDrawn_[n] = 1;
+      ++s.blocksRetessellated;
+      changed = true;
+    }
+  }
+  drawnMerged_ = now;
+  return changed;
+}
+
+const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates,
+  const std::vector<int>* merged, const std::vector<double>* mergedFactor)
 {
   const Terrain& t = *terrain_;
   FrameStats s;
-  bool changed = false;
   arena_.beginFrame();
+  bool changed = finishMergedNodes(merged, mergedFactor, s);
   // Only blocks drawn now or last frame can change: the rest of the DEM costs nothing.
   nowDrawn_.clear();
   if (candidates)

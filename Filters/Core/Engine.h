@@ -12,6 +12,7 @@
 #include "IndexArena.h"
 #include "Quadtree.h"
 #include "SelectLevels.h"
+#include "SelectNodes.h"
 #include "Tessellate.h"
 #include "Terrain.h"
 #include "View.h"
@@ -32,7 +33,8 @@ struct FrameStats
   double maxScreenError = 0.0;   // certified bound, pixels (view mode)
   double maxGeometricError = 0.0; // certified bound, data units (metres x height scale)
   bool reused = false;           // indices identical to the previous frame's, not regenerated
-  int blocksRetessellated = 0;   // blocks whose triangles were regenerated this frame
+  int blocksRetessellated = 0;   // blocks and merged nodes whose triangles were regenerated
+  int mergedNodes = 0;           // quadtree nodes drawn whole (their blocks count as visible)
 };
 
 // "" when `scale` is a usable vertical exaggeration (finite and > 0), else the reason: the
@@ -73,6 +75,14 @@ public:
   // invalid shape (Levels.h), is refused: lastError() names the block, nothing is drawn.
   const FrameStats& updateWithLevels(const std::vector<int8_t>& levels);
 
+  // Hierarchical selection (SelectNodes.h): far terrain drawn as merged quadtree nodes
+  // instead of one coarsest block per leaf. On by default; off selects block by block.
+  // Applies to update and updateForError from the next frame on.
+  void setMergedNodes(bool on) { mergedNodes_ = on; }
+  bool mergedNodes() const { return mergedNodes_; }
+  // The nodes drawn whole in the last frame (indices into quadtree().nodes).
+  const std::vector<int>& mergedNodeList() const { return drawnMerged_; }
+
   void setErrorMetric(ErrorMetric m) { metric_ = m; }
   ErrorMetric errorMetric() const { return metric_; }
 
@@ -92,11 +102,25 @@ public:
 
 private:
   // `candidates`: the only blocks that may have a level >= 0 this frame (null: any).
-  const FrameStats& finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates = nullptr);
+  // `merged`: the nodes drawn whole, with their factors when `factor` is given.
+  const FrameStats& finishFrame(const std::vector<double>* factor,
+    const std::vector<int>* candidates = nullptr, const std::vector<int>* merged = nullptr,
+    const std::vector<double>* mergedFactor = nullptr);
+  // The merged nodes' part of finishFrame: their slots in the arena and statistics.
+  bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
+    FrameStats& s);
+  // Hierarchical selection for update (frustum and projector given) or updateForError.
+  void selectHierarchically(const Frustum* frustum, const std::function<double(const Box&)>& factorOf,
+    double tau);
 
   // Never null: an empty Terrain when there is no heightfield.
   std::shared_ptr<const Terrain> terrain_ = std::make_shared<const Terrain>();
   ErrorMetric metric_ = ErrorMetric::Certified;
+  bool mergedNodes_ = true;
+  NodeSelection nodeSelection_;
+  NodeScratch nodeScratch_;
+  std::vector<uint8_t> nodeDrawn_, nodeNow_; // per node: in the arena / merged this frame
+  std::vector<int> drawnMerged_;             // nodes drawn whole, last finished frame
   double heightScale_ = 1.0;
 
   std::vector<uint8_t> visible_;

@@ -31,6 +31,17 @@ float roundUpToFloat(double e)
   return static_cast<double>(f) < e ? std::nextafter(f, kInf) : f;
 }
 
+// Floor and ceiling of a / b for b > 0, any sign of a.
+int64_t floorDiv(int64_t a, int64_t b)
+{
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+int64_t ceilDiv(int64_t a, int64_t b)
+{
+  return -floorDiv(-a, b);
+}
+
 int64_t edgeFn(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px, int64_t py)
 {
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
@@ -160,6 +171,40 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict)
         {
           return kInf;
         }
+      }
+    }
+    return roundUpToFloat(worst / fullArea);
+  }
+  // A long sliver (a merged node's fan) covers a small part of its box: solve each row's
+  // span exactly instead (three integer divisions a row). Small triangles scan the box.
+  const int64_t boxSamples = (i1 - i0 + 1) * (j1 - j0 + 1);
+  if (boxSamples > 4 * (twiceArea + (j1 - j0 + 1)))
+  {
+    const int64_t w0di = -(w1di + w2di);
+    for (int64_t j = j0; j <= j1; ++j)
+    {
+      int64_t w1, w2;
+      weightsAt(i0, j, w1, w2);
+      // Columns i0 + d, d in [lo, hi], where every weight w + d * step is >= 0.
+      int64_t lo = 0, hi = i1 - i0;
+      const int64_t w[3] = { twiceArea - w1 - w2, w1, w2 }, step[3] = { w0di, w1di, w2di };
+      for (int e = 0; e < 3; ++e)
+      {
+        if (step[e] > 0)
+          lo = std::max(lo, ceilDiv(-w[e], step[e]));
+        else if (step[e] < 0)
+          hi = std::min(hi, floorDiv(w[e], -step[e]));
+        else if (w[e] < 0)
+          hi = -1;
+      }
+      if (lo > hi)
+      {
+        continue;
+      }
+      if (!line(z + j * nx + i0 + lo, 1, hi - lo + 1, w1 + lo * w1di, w2 + lo * w2di, w1di, w2di,
+            false))
+      {
+        return kInf;
       }
     }
     return roundUpToFloat(worst / fullArea);
@@ -321,6 +366,19 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
   }
 }
 
+// A merged node's fan over every sample of the node; nodata anywhere below it is +inf
+// (the fan would draw over the hole).
+float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scratch& scratch)
+{
+  if (!mergeableNode(qt, node))
+  {
+    return kInf;
+  }
+  scratch.triangles.clear();
+  emitMergedNodeGrid(qt, node, scratch.triangles);
+  return trianglesError(hf, scratch.triangles, true);
+}
+
 } // namespace
 
 float ErrorTable::strip(int block, int side, int m, int n) const
@@ -358,16 +416,24 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   t.ownErrorExact.assign(blocks * t.levels, kInf);
   t.stripError.assign(blocks * 4 * std::max(1, t.pairs), 0.0f);
 
+  const std::size_t nodes = qt.nodes.size();
+  t.mergedError.assign(nodes, kInf);
+  // Work items: every block, then every quadtree node (its merged fan).
+  const std::size_t items = blocks + nodes;
+
   unsigned workers = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(blocks)));
-  // Blocks are independent: interleave them over the workers so that expensive regions of
+  workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(items)));
+  // Items are independent: interleave them over the workers so that expensive regions of
   // the DEM spread evenly.
   std::atomic<std::size_t> done{ 0 };
   auto work = [&](unsigned first) {
     Scratch scratch;
-    for (std::size_t b = first; b < blocks; b += workers)
+    for (std::size_t k = first; k < items; k += workers)
     {
-      fillBlock(hf, qt, static_cast<int>(b), t, scratch);
+      if (k < blocks)
+        fillBlock(hf, qt, static_cast<int>(k), t, scratch);
+      else
+        t.mergedError[k - blocks] = mergedNodeError(hf, qt, static_cast<int>(k - blocks), scratch);
       done.fetch_add(1, std::memory_order_relaxed);
     }
   };
@@ -380,9 +446,9 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   {
     // The caller's thread reports (VTK progress events must come from it) while it waits.
     // Short waits first, so that a small table is not held up by the polling.
-    for (int wait = 1; done.load(std::memory_order_relaxed) < blocks; wait = std::min(2 * wait, 50))
+    for (int wait = 1; done.load(std::memory_order_relaxed) < items; wait = std::min(2 * wait, 50))
     {
-      progress(static_cast<double>(done.load(std::memory_order_relaxed)) / blocks);
+      progress(static_cast<double>(done.load(std::memory_order_relaxed)) / items);
       std::this_thread::sleep_for(std::chrono::milliseconds(wait));
     }
     progress(1.0);

@@ -34,6 +34,10 @@ struct ErrorTable
   // in n. Zero where unused.
   std::vector<float> stripError;
   int pairs = 0; // levels * (levels - 1) / 2
+  // mergedError[node]: exact error of quadtree node `node` drawn whole (Tessellate.h,
+  // merged nodes: the fan over its perimeter); +inf for leaves, nodes that are not
+  // mergeable and nodes over nodata.
+  std::vector<float> mergedError;
 
   static int pairIndex(int m, int n) { return n * (n - 1) / 2 + m; } // m < n
   float own(int block, int m) const { return ownError[static_cast<std::size_t>(block) * levels + m]; }

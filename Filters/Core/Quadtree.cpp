@@ -70,6 +70,11 @@ Box sampleBox(const Heightfield& hf, int i0, int i1, int j0, int j1, bool& hasNo
 // Builds the node over block columns [c0, c1) and rows [r0, r1) into qt.nodes[nodeIndex].
 void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
 {
+  QuadtreeNode& node = qt.nodes[nodeIndex];
+  node.colBegin = c0;
+  node.colEnd = c1;
+  node.rowBegin = r0;
+  node.rowEnd = r1;
   if (c1 - c0 == 1 && r1 - r0 == 1)
   {
     const int b = qt.blockIndex(c0, r0);

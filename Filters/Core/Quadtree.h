@@ -31,6 +31,9 @@ struct QuadtreeNode
   int32_t firstChild = -1; // index of first child in Quadtree::nodes; children are contiguous
   int32_t childCount = 0;  // 0 for a leaf
   int32_t block = -1;      // leaf only: block index (row * blockCols + col)
+  // The block columns [colBegin, colEnd) and rows [rowBegin, rowEnd) below the node: it
+  // covers samples colStart[colBegin]..colStart[colEnd] x rowStart[rowBegin]..rowStart[rowEnd].
+  int32_t colBegin = 0, colEnd = 0, rowBegin = 0, rowEnd = 0;
 };
 
 struct Quadtree

@@ -16,35 +16,6 @@ namespace gmm
 namespace
 {
 
-enum class Overlap
-{
-  Outside,
-  Partial,
-  Inside
-};
-
-Overlap boxVsFrustum(const Box& box, const Frustum& fr)
-{
-  bool inside = true;
-  for (const glm::dvec4& p : fr)
-  {
-    // p-vertex: the box corner furthest along the plane normal; n-vertex: the nearest.
-    const glm::dvec3 pv(p.x >= 0 ? box.hi.x : box.lo.x, p.y >= 0 ? box.hi.y : box.lo.y,
-      p.z >= 0 ? box.hi.z : box.lo.z);
-    const glm::dvec3 nv(p.x >= 0 ? box.lo.x : box.hi.x, p.y >= 0 ? box.lo.y : box.hi.y,
-      p.z >= 0 ? box.lo.z : box.hi.z);
-    if (glm::dot(glm::dvec3(p), pv) + p.w < 0)
-    {
-      return Overlap::Outside;
-    }
-    if (glm::dot(glm::dvec3(p), nv) + p.w < 0)
-    {
-      inside = false;
-    }
-  }
-  return inside ? Overlap::Inside : Overlap::Partial;
-}
-
 void markSubtree(const Quadtree& qt, int node, std::vector<uint8_t>& visible, std::vector<int>& list)
 {
   const QuadtreeNode& n = qt.nodes[node];
@@ -97,8 +68,8 @@ bool ringLevel(const Quadtree& qt, int b, int m)
   return blockShape(qt.blockWidth(b), qt.blockHeight(b), m) == BlockShape::Ring;
 }
 
-// Coarsest valid level whose (monotone) own error fits the budget; level 0 always fits.
-// Budgets are finite (selectLevels clamps them), so a level marked +inf never fits.
+} // namespace
+
 int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
 {
   for (int m = top; m > 0; --m)
@@ -111,9 +82,6 @@ int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
   return 0;
 }
 
-// Refines neighbours until every strip joined to a coarser edge fits its block's budget.
-// Levels only decrease, so this ends; a neighbour at the block's level (or finer) removes
-// the coarse edge altogether.
 void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
   const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch)
 {
@@ -122,6 +90,7 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
   std::vector<int>& work = scratch.work;
   std::vector<uint8_t>& queued = scratch.queued;
   work.clear();
+  scratch.splitRequests.clear();
   if (queued.size() != levels.size())
   {
     queued.assign(levels.size(), 0);
@@ -156,6 +125,12 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
         continue;
       }
       const int nb = neighbour[side];
+      if (levels[nb] == kCoveredLevel)
+      {
+        // The edge is a merged node's: only splitting that node refines it.
+        scratch.splitRequests.push_back(nb);
+        continue;
+      }
       int target = n - 1;
       while (target > m && (t.own(nb, target) == std::numeric_limits<float>::infinity() ||
                              t.strip(b, side, m, target) > budget[b]))
@@ -177,6 +152,8 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
   }
 }
 
+namespace
+{
 // `drawn`: the blocks with levels[b] >= 0 (the others are -1).
 void selectWithBudgets(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& budget,
   const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch)
@@ -187,8 +164,29 @@ void selectWithBudgets(const Quadtree& qt, const ErrorTable& table, const std::v
   }
   fixStrips(qt, table, budget, drawn, levels, scratch);
 }
-
 } // namespace
+
+Overlap boxVsFrustum(const Box& box, const Frustum& fr)
+{
+  bool inside = true;
+  for (const glm::dvec4& p : fr)
+  {
+    // p-vertex: the box corner furthest along the plane normal; n-vertex: the nearest.
+    const glm::dvec3 pv(p.x >= 0 ? box.hi.x : box.lo.x, p.y >= 0 ? box.hi.y : box.lo.y,
+      p.z >= 0 ? box.hi.z : box.lo.z);
+    const glm::dvec3 nv(p.x >= 0 ? box.lo.x : box.hi.x, p.y >= 0 ? box.lo.y : box.hi.y,
+      p.z >= 0 ? box.lo.z : box.hi.z);
+    if (glm::dot(glm::dvec3(p), pv) + p.w < 0)
+    {
+      return Overlap::Outside;
+    }
+    if (glm::dot(glm::dvec3(p), nv) + p.w < 0)
+    {
+      inside = false;
+    }
+  }
+  return inside ? Overlap::Inside : Overlap::Partial;
+}
 
 int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>& visible,
   std::vector<int>& list)
@@ -202,45 +200,63 @@ int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>&
   return static_cast<int>(list.size());
 }
 
+BoxProjector::BoxProjector(const View& view, const glm::dmat4& toWorld, ErrorMetric metric)
+  : view_(view)
+  , toWorld_(toWorld)
+  , metric_(metric)
+  , cam_(cameraFrameOf(view))
+{
+  // World length of a unit stored-height error: height scale times the actor's z column.
+  const double vertical = robustLength(glm::dvec3(toWorld[2]));
+  ppu_ = pixelsPerUnit(view) * vertical;
+}
+
+double BoxProjector::factor(const Box& box) const
+{
+  if (view_.parallel)
+  {
+    return visibleFactor(ppu_); // orthographic: same scale at every depth
+  }
+  if (metric_ == ErrorMetric::CenterDistance)
+  {
+    const glm::dvec3 centre(toWorld_ * glm::dvec4(0.5 * (box.lo + box.hi), 1.0));
+    const double d = robustLength(centre - view_.eye);
+    return visibleFactor(ppu_ / std::max(d, view_.nearDistance));
+  }
+  // The world image of the box is the parallelepiped spanned by its transformed corners;
+  // distance is convex and depth linear, so both extremes are at corners.
+  double maxDist = 0.0, minDepth = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 8; ++k)
+  {
+    const glm::dvec4 corner(
+      (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z, 1.0);
+    const glm::dvec3 q = glm::dvec3(toWorld_ * corner) - view_.eye;
+    maxDist = std::max(maxDist, robustLength(q));
+    minDepth = std::min(minDepth, glm::dot(q, cam_.forward));
+  }
+  const double depth = std::max(minDepth, view_.nearDistance);
+  // Divide twice rather than by depth^2, which overflows first. +inf (a near plane of
+  // 1e-300) is allowed: selectLevels then gives the block a zero error budget.
+  return visibleFactor(ppu_ * (maxDist / depth) / depth);
+}
+
 void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& toWorld,
   const std::vector<int>& visible, ErrorMetric metric, std::vector<double>& factor)
 {
   factor.assign(qt.blockCount(), 0.0);
-  // World length of a unit stored-height error: height scale times the actor's z column.
-  const double vertical = robustLength(glm::dvec3(toWorld[2]));
-  const double ppu = pixelsPerUnit(view) * vertical;
-  const CameraFrame cam = cameraFrameOf(view);
+  const BoxProjector projector(view, toWorld, metric);
   for (int b : visible)
   {
-    if (view.parallel)
-    {
-      factor[b] = visibleFactor(ppu); // orthographic: same scale at every depth
-      continue;
-    }
-    const Box& box = qt.blockBox[b];
-    if (metric == ErrorMetric::CenterDistance)
-    {
-      const glm::dvec3 centre(toWorld * glm::dvec4(0.5 * (box.lo + box.hi), 1.0));
-      const double d = robustLength(centre - view.eye);
-      factor[b] = visibleFactor(ppu / std::max(d, view.nearDistance));
-      continue;
-    }
-    // The world image of the box is the parallelepiped spanned by its transformed corners;
-    // distance is convex and depth linear, so both extremes are at corners.
-    double maxDist = 0.0, minDepth = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 8; ++k)
-    {
-      const glm::dvec4 corner(
-        (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z, 1.0);
-      const glm::dvec3 q = glm::dvec3(toWorld * corner) - view.eye;
-      maxDist = std::max(maxDist, robustLength(q));
-      minDepth = std::min(minDepth, glm::dot(q, cam.forward));
-    }
-    const double depth = std::max(minDepth, view.nearDistance);
-    // Divide twice rather than by depth^2, which overflows first. +inf (a near plane of
-    // 1e-300) is allowed: selectLevels then gives the block a zero error budget.
-    factor[b] = visibleFactor(ppu * (maxDist / depth) / depth);
+    factor[b] = projector.factor(qt.blockBox[b]);
   }
+}
+
+double errorBudget(double tau, double factor)
+{
+  // tau / factor overflows for a huge tau or a tiny factor (a far camera); +inf would let
+  // "error <= budget" accept the +inf of levels not allowed (over nodata).
+  const double most = std::numeric_limits<double>::max();
+  return std::isfinite(factor) ? std::min(tau / factor, most) : 0.0;
 }
 
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
@@ -256,10 +272,7 @@ void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector
     if (factor[b] > 0.0)
     {
       levels[b] = 0;
-      // tau / factor overflows for a huge tau or a tiny factor (a far camera); +inf would
-      // let "error <= budget" accept the +inf of levels not allowed (over nodata).
-      const double most = std::numeric_limits<double>::max();
-      budget[b] = std::isfinite(factor[b]) ? std::min(tau / factor[b], most) : 0.0;
+      budget[b] = errorBudget(tau, factor[b]);
     }
   }
   selectWithBudgets(qt, table, budget, visible, levels, scratch);

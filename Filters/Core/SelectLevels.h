@@ -25,6 +25,16 @@ enum class ErrorMetric
   CenterDistance
 };
 
+enum class Overlap
+{
+  Outside,
+  Partial,
+  Inside
+};
+
+// Where a box lies against the frustum (conservative: Partial may be outside).
+Overlap boxVsFrustum(const Box& box, const Frustum& fr);
+
 // Marks blocks whose box intersects the frustum (1) or not (0), and lists the visible ones
 // (quadtree order), walking the quadtree with early full-inside accept. The frustum is in
 // the quadtree's frame (x, y, stored height): transformPlanes(frustumOf(view),
@@ -41,6 +51,27 @@ int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>&
 void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& toWorld,
   const std::vector<int>& visible, ErrorMetric metric, std::vector<double>& factor);
 
+// The factor of projectionFactors for any box of the quadtree's frame (a block's, a
+// node's): pixels per unit of stored-height error anywhere inside it, always > 0.
+class BoxProjector
+{
+public:
+  BoxProjector(const View& view, const glm::dmat4& toWorld, ErrorMetric metric);
+  double factor(const Box& box) const;
+
+private:
+  View view_;
+  glm::dmat4 toWorld_;
+  ErrorMetric metric_;
+  CameraFrame cam_;
+  double ppu_ = 0.0;
+};
+
+// The largest stored-height error that projects within tau pixels at `factor`: tau /
+// factor, clamped to a finite value (an infinite budget would accept the +inf of levels
+// that are not allowed), 0 for an infinite factor.
+double errorBudget(double tau, double factor);
+
 // Chooses the coarsest level per visible block whose projected error is <= tau pixels, then
 // refines neighbours until every side strip joined to a coarser edge is within tau too.
 // levels[b] = -1 for culled blocks. tau must be finite and >= 0; any such tau works, DBL_MAX
@@ -52,7 +83,21 @@ struct SelectionScratch
   std::vector<double> budget;
   std::vector<uint8_t> queued;
   std::vector<int> work;
+  // fixStrips: blocks under a merged node (kCoveredLevel) whose edge is too coarse for a
+  // neighbour's strip; the node must be split (SelectNodes.h).
+  std::vector<int> splitRequests;
 };
+
+// Coarsest valid level of block b whose (monotone) own error fits the budget; level 0
+// always fits. Budgets are finite (errorBudget), so a level marked +inf never fits.
+int coarsestWithin(const ErrorTable& t, int b, int top, double budget);
+
+// Refines neighbours until every strip of a drawn block (listed in `drawn`) joined to a
+// coarser edge fits the block's budget. Levels only decrease, so this ends; a neighbour at
+// the block's level (or finer) removes the coarse edge altogether. A neighbour drawn by a
+// merged node cannot be refined here: it is listed in scratch.splitRequests instead.
+void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
+  const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch);
 
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
   const std::vector<double>& factor, double tau, std::vector<int8_t>& levels,

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // Version 1: the table of the four-side-strip tessellation (ErrorTable.h). Any change of
 // the table's meaning or layout changes it, and older files are then rebuilt.
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2; // 2: merged-node errors
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 
@@ -77,15 +77,15 @@ struct FileHeader
   uint32_t byteOrder;
   uint64_t heightsHash;
   int32_t nx, ny, maxBlockQuads, levels, pairs, blocks;
-  uint32_t reserved;
+  uint32_t nodes; // quadtree nodes (mergedError entries)
 };
 #pragma pack(pop)
 
-// The checksum a file stores after its data: the header, then the three arrays in order.
+// The checksum a file stores after its data: the header, then the four arrays in order.
 uint64_t checksum(const FileHeader& h, const ErrorTable& t)
 {
   uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
-  for (const std::vector<float>* v : { &t.ownError, &t.ownErrorExact, &t.stripError })
+  for (const std::vector<float>* v : { &t.ownError, &t.ownErrorExact, &t.stripError, &t.mergedError })
   {
     sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
   }
@@ -194,13 +194,15 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   }
   const int levels = tableLevels(qt);
   const int pairs = levels * (levels - 1) / 2;
-  if (h.blocks != qt.blockCount() || h.levels != levels || h.pairs != pairs)
+  if (h.blocks != qt.blockCount() || h.levels != levels || h.pairs != pairs ||
+    h.nodes != qt.nodes.size())
   {
     return path + ": sizes do not match the quadtree";
   }
   const std::size_t blocks = static_cast<std::size_t>(h.blocks);
   const std::size_t own = blocks * levels, strips = blocks * 4 * std::max(1, pairs);
-  const std::size_t dataBytes = (2 * own + strips) * sizeof(float);
+  const std::size_t nodes = h.nodes;
+  const std::size_t dataBytes = (2 * own + strips + nodes) * sizeof(float);
   const uintmax_t expected = sizeof h + dataBytes + sizeof(uint64_t);
   if (fs::file_size(path, ec) != expected || ec)
   {
@@ -211,10 +213,12 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   out.ownError.resize(own);
   out.ownErrorExact.resize(own);
   out.stripError.resize(strips);
+  out.mergedError.resize(nodes);
   uint64_t stored = 0;
   in.read(reinterpret_cast<char*>(out.ownError.data()), own * sizeof(float));
   in.read(reinterpret_cast<char*>(out.ownErrorExact.data()), own * sizeof(float));
   in.read(reinterpret_cast<char*>(out.stripError.data()), strips * sizeof(float));
+  in.read(reinterpret_cast<char*>(out.mergedError.data()), nodes * sizeof(float));
   in.read(reinterpret_cast<char*>(&stored), sizeof stored);
   if (!in)
   {
@@ -226,7 +230,7 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
     out = ErrorTable();
     return path + ": checksum mismatch (corrupt)";
   }
-  for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError })
+  for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError, &out.mergedError })
   {
     if (!std::all_of(v->begin(), v->end(), tableValue))
     {
@@ -260,6 +264,7 @@ std::string writeTableCache(const std::string& path, const TableCacheKey& key, c
   h.levels = table.levels;
   h.pairs = table.pairs;
   h.blocks = table.levels > 0 ? static_cast<int32_t>(table.ownError.size() / table.levels) : 0;
+  h.nodes = static_cast<uint32_t>(table.mergedError.size());
   const uint64_t sum = checksum(h, table);
   // A private temporary name in the same directory, then an atomic rename.
   std::random_device rd;
@@ -271,7 +276,7 @@ std::string writeTableCache(const std::string& path, const TableCacheKey& key, c
       return "cannot write " + tmp;
     }
     f.write(reinterpret_cast<const char*>(&h), sizeof h);
-    for (const std::vector<float>* v : { &table.ownError, &table.ownErrorExact, &table.stripError })
+    for (const std::vector<float>* v : { &table.ownError, &table.ownErrorExact, &table.stripError, &table.mergedError })
     {
       f.write(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(float));
     }

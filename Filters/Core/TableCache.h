@@ -12,9 +12,10 @@
 // a reader never sees half a file, and concurrent writers of one key do no harm.
 //
 // Format (native byte order, checked): "GMMTABLE", u32 version, u32 byte-order mark,
-// u64 heights hash, i32 nx, ny, block size, levels, pairs, blocks, u32 reserved,
+// u64 heights hash, i32 nx, ny, block size, levels, pairs, blocks, u32 nodes,
 // f32 ownError[blocks * levels], f32 ownErrorExact[...], f32 stripError[blocks * 4 * pairs],
-// u64 checksum of everything before it.
+// f32 mergedError[nodes], u64 checksum of everything before it. Version 2 added the
+// merged-node errors (a version 1 file is reported as such and rebuilt).
 #pragma once
 
 #include "ErrorTable.h"

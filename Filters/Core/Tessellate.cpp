@@ -292,17 +292,79 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
     r + 1 < qt.blockRows ? block + qt.blockCols : -1,
     c > 0 ? block - 1 : -1,
   };
+  const int top = topLevel(qt.blockWidth(block), qt.blockHeight(block));
   for (int side = 0; side < 4; ++side)
   {
     const int nb = neighbour[side];
-    const int nl = nb >= 0 ? levels[nb] : -1;
+    int nl = nb >= 0 ? levels[nb] : -1;
+    if (nl == kCoveredLevel)
+    {
+      nl = top; // corners only, as the merged node's perimeter has them
+    }
     cfg.edgeLevel[side] = nl > cfg.level ? nl : cfg.level;
   }
   return cfg;
 }
 
+bool mergeableNode(const Quadtree& qt, int node)
+{
+  // At least 2 x 2 blocks: the fan then has no more triangles than its blocks at their
+  // coarsest (2 (c + r) <= 2 c r), and its centre sample is strictly inside.
+  const QuadtreeNode& n = qt.nodes[node];
+  return n.colEnd - n.colBegin >= 2 && n.rowEnd - n.rowBegin >= 2;
+}
+
+void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)
+{
+  out.clear();
+  const QuadtreeNode& n = qt.nodes[node];
+  const int i0 = qt.colStart[n.colBegin], i1 = qt.colStart[n.colEnd];
+  const int j0 = qt.rowStart[n.rowBegin], j1 = qt.rowStart[n.rowEnd];
+  for (int c = n.colBegin; c < n.colEnd; ++c)
+    out.push_back({ qt.colStart[c], j0 }); // south, west to east
+  for (int r = n.rowBegin; r < n.rowEnd; ++r)
+    out.push_back({ i1, qt.rowStart[r] }); // east, south to north
+  for (int c = n.colEnd; c > n.colBegin; --c)
+    out.push_back({ qt.colStart[c], j1 }); // north, east to west
+  for (int r = n.rowEnd; r > n.rowBegin; --r)
+    out.push_back({ i0, qt.rowStart[r] }); // west, north to south
+}
+
+namespace
+{
+template <typename Sink>
+void emitMergedTo(Sink& sink, const Quadtree& qt, int node)
+{
+  if (!mergeableNode(qt, node))
+  {
+    return;
+  }
+  std::vector<GridPoint> perimeter; // a few per frame: not worth a scratch
+  mergedPerimeter(qt, node, perimeter);
+  const QuadtreeNode& n = qt.nodes[node];
+  const GridPoint centre{ (qt.colStart[n.colBegin] + qt.colStart[n.colEnd]) / 2,
+    (qt.rowStart[n.rowBegin] + qt.rowStart[n.rowEnd]) / 2 };
+  for (std::size_t k = 0; k < perimeter.size(); ++k)
+  {
+    sink.triangle(centre, perimeter[k], perimeter[(k + 1) % perimeter.size()]);
+  }
+}
+} // namespace
+
+void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out)
+{
+  TriangleSink sink(hf, out, false);
+  emitMergedTo(sink, qt, node);
+}
+
+void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out)
+{
+  GridSink sink(out);
+  emitMergedTo(sink, qt, node);
+}
+
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  std::vector<uint32_t>& out)
+  std::vector<uint32_t>& out, const std::vector<int>& merged)
 {
   out.clear();
   for (int b = 0; b < qt.blockCount(); ++b)
@@ -311,6 +373,10 @@ void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int
     {
       emitBlock(hf, qt, b, blockConfigOf(qt, levels, b), BlockPart::Whole, out);
     }
+  }
+  for (int n : merged)
+  {
+    emitMergedNode(hf, qt, n, out);
   }
 }
 

@@ -76,13 +76,46 @@ void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const Block
 void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, BlockPart part,
   std::vector<GridTriangle>& out, EmitScratch& scratch);
 
-// Edge level of each side of `block` given every block's level (-1 = not drawn): the
-// coarser of the two blocks when the neighbour is drawn, else the block's own level.
+// Merged nodes (hierarchical selection): a quadtree node drawn whole, far from the eye,
+// instead of one coarsest block per leaf. It is drawn as a fan from the sample nearest its
+// centre to its perimeter, and the perimeter passes through every block corner on the
+// node's border and nothing else. A block beside it draws that side with its corners only
+// (the edge at the block's top level), and a merged neighbour has the same points along
+// the shared line (band boundaries are global), so no crack or T-junction can appear. The
+// fan does not depend on the neighbours: its error is one number per node (ErrorTable).
+// Blocks below a merged node carry kCoveredLevel in the level list.
+constexpr int8_t kCoveredLevel = -2;
+
+// True when a block with this entry of a level list is drawn: by itself (a level >= 0) or
+// as part of a merged node.
+inline bool drawnLevel(int level)
+{
+  return level >= 0 || level == kCoveredLevel;
+}
+
+// True when `node` may be drawn whole: a node over at least 2 x 2 blocks (fewer
+// triangles than its blocks at their coarsest, and a centre sample strictly inside).
+bool mergeableNode(const Quadtree& qt, int node);
+
+// The perimeter of a node, counter-clockwise in (i, j) from its south-west corner: every
+// block corner on its border, corners included, each once.
+void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out);
+
+// A merged node's fan, as indices (appended; triangles over nodata dropped as in
+// emitBlock) or as grid points (appended, nodata or not).
+void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out);
+void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out);
+
+// Edge level of each side of `block` given every block's level (-1 = not drawn,
+// kCoveredLevel = drawn by a merged node): the coarser of the two blocks when the
+// neighbour is drawn, the block's top level (corners only) beside a merged node, else the
+// block's own level.
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
 // Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in
-// block order. `out` is cleared first.
+// block order, then the merged nodes listed in `merged` (their blocks at kCoveredLevel).
+// `out` is cleared first.
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  std::vector<uint32_t>& out);
+  std::vector<uint32_t>& out, const std::vector<int>& merged = {});
 
 } // namespace gmm

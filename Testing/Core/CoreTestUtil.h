@@ -88,6 +88,17 @@ inline int refTopLevel(int w, int h)
   return m;
 }
 
+// Triangles of the coarsest frame (a huge tolerance, no nodata), from the design rather
+// than the engine: with merged nodes the root is drawn whole when it spans at least 2 x 2
+// blocks, a fan with one triangle per block side on the DEM's border, 2 (cols + rows);
+// otherwise every block is one quad, two triangles.
+inline std::size_t coarsestTriangles(int blockCols, int blockRows, bool mergedNodes = true)
+{
+  if (mergedNodes && blockCols >= 2 && blockRows >= 2)
+    return 2u * static_cast<std::size_t>(blockCols + blockRows);
+  return 2u * static_cast<std::size_t>(blockCols) * blockRows;
+}
+
 // Reference recursive halving (Quadtree.h): first half = floor(q / 2).
 inline void refSplit(int start, int quads, int maxQuads, std::vector<int>& starts)
 {

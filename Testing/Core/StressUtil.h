@@ -65,7 +65,7 @@ inline void expectGoodFrame(const gmm::Engine& e, const gmm::View* view, double 
   MeshCheckOptions opt;
   opt.drawn.assign(qt.blockCount(), true);
   for (int b = 0; b < qt.blockCount(); ++b)
-    opt.drawn[b] = e.levels()[b] >= 0 && !(nodata && qt.blockHasNodata[b]);
+    opt.drawn[b] = gmm::drawnLevel(e.levels()[b]) && !(nodata && qt.blockHasNodata[b]);
   opt.allowNodataHoles = nodata;
   opt.checkArea = !nodata;
   const MeshCheckResult mesh = checkMesh(hf, qt.colStart, qt.rowStart, e.indices(), opt);

@@ -178,3 +178,68 @@ TEST(ErrorTable, StripAndFanErrorsEqualBruteForce)
   }
   EXPECT_GT(compared, 1000);
 }
+
+// A merged node's error, from the design alone: the fan from the sample at the node's
+// centre (rounded down) to the perimeter through every block corner on its border, and
+// the largest vertical distance of a sample of the node to it (brute force, long double).
+// The emitted fan must be that fan, and the table's entry its error.
+TEST(ErrorTable, MergedNodeErrorsEqualBruteForce)
+{
+  Rng rng(2024);
+  int compared = 0;
+  for (int k = 0; k < 10; ++k)
+  {
+    const int nx = randInt(rng, 20, 120), ny = randInt(rng, 20, 120);
+    gmm::Heightfield hf = roughTerrain(nx, ny, rng);
+    const bool hole = k % 3 == 0;
+    if (hole)
+      hf.z[hf.index(randInt(rng, 0, nx - 1), randInt(rng, 0, ny - 1))] = NAN;
+    const gmm::Quadtree qt = gmm::buildQuadtree(hf, 4 << randInt(rng, 0, 2));
+    const gmm::ErrorTable table = gmm::buildErrorTable(hf, qt, 1);
+    ASSERT_EQ(table.mergedError.size(), qt.nodes.size());
+    for (std::size_t n = 0; n < qt.nodes.size(); ++n)
+    {
+      const gmm::QuadtreeNode& node = qt.nodes[n];
+      const bool mergeable = node.colEnd - node.colBegin >= 2 && node.rowEnd - node.rowBegin >= 2;
+      if (!mergeable)
+      {
+        EXPECT_EQ(table.mergedError[n], INFINITY) << "node " << n;
+        continue;
+      }
+      const int i0 = qt.colStart[node.colBegin], i1 = qt.colStart[node.colEnd];
+      const int j0 = qt.rowStart[node.rowBegin], j1 = qt.rowStart[node.rowEnd];
+      std::vector<gmm::GridPoint> ring;
+      for (int c = node.colBegin; c < node.colEnd; ++c) ring.push_back({ qt.colStart[c], j0 });
+      for (int r = node.rowBegin; r < node.rowEnd; ++r) ring.push_back({ i1, qt.rowStart[r] });
+      for (int c = node.colEnd; c > node.colBegin; --c) ring.push_back({ qt.colStart[c], j1 });
+      for (int r = node.rowEnd; r > node.rowBegin; --r) ring.push_back({ i0, qt.rowStart[r] });
+      const gmm::GridPoint centre{ (i0 + i1) / 2, (j0 + j1) / 2 };
+      std::vector<gmm::GridTriangle> fan;
+      for (std::size_t p = 0; p < ring.size(); ++p)
+        fan.push_back({ { centre, ring[p], ring[(p + 1) % ring.size()] } });
+      std::vector<gmm::GridTriangle> emitted;
+      gmm::emitMergedNodeGrid(qt, static_cast<int>(n), emitted);
+      ASSERT_EQ(emitted.size(), fan.size()) << "node " << n;
+      for (std::size_t t = 0; t < fan.size(); ++t)
+        for (int v = 0; v < 3; ++v)
+          ASSERT_TRUE(emitted[t].v[v].i == fan[t].v[v].i && emitted[t].v[v].j == fan[t].v[v].j)
+            << "node " << n << " triangle " << t;
+      bool nodata = false;
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          nodata = nodata || std::isnan(hf.height(i, j));
+      if (nodata)
+      {
+        EXPECT_EQ(table.mergedError[n], INFINITY) << "node " << n << " over nodata";
+        continue;
+      }
+      double brute = 0.0;
+      for (const gmm::GridTriangle& t : fan)
+        brute = std::max(brute, bruteTriangleError(hf, t));
+      EXPECT_GE(table.mergedError[n], brute * (1 - 1e-12)) << "node " << n;
+      EXPECT_LE(table.mergedError[n], brute * (1 + 1e-6) + 1e-9) << "node " << n;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 50);
+}

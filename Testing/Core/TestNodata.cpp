@@ -59,14 +59,14 @@ void checkFrame(const gmm::Engine& e, const std::string& what, bool selected)
   // treating blocks that contain or touch nodata as "not drawn" for the border rule.
   opt.drawn.assign(qt.blockCount(), true);
   for (int b = 0; b < qt.blockCount(); ++b)
-    if (!blockFree(hf, qt, b) || e.levels()[b] < 0)
+    if (!blockFree(hf, qt, b) || !gmm::drawnLevel(e.levels()[b]))
       opt.drawn[b] = false;
   MeshCheckResult res = checkMesh(hf, qt.colStart, qt.rowStart, e.indices(), opt);
   EXPECT_EQ(res.error, "") << what;
   std::vector<bool> drawn(qt.blockCount()), mustCover(qt.blockCount());
   for (int b = 0; b < qt.blockCount(); ++b)
   {
-    drawn[b] = e.levels()[b] >= 0;
+    drawn[b] = gmm::drawnLevel(e.levels()[b]);
     mustCover[b] = selected || blockFree(hf, qt, b);
   }
   EXPECT_EQ(checkCoverage(hf, qt.colStart, qt.rowStart, e.indices(), drawn, mustCover), "") << what;

@@ -61,7 +61,7 @@ TEST(Reuse, LevelChangeIsNotReused)
   EXPECT_NE(e.indices(), idxFar);
   // the cached result equals a fresh tessellation of the same levels
   std::vector<uint32_t> fresh;
-  gmm::tessellate(e.heightfield(), e.quadtree(), e.levels(), fresh);
+  gmm::tessellate(e.heightfield(), e.quadtree(), e.levels(), fresh, e.mergedNodeList());
   auto sorted = [](std::vector<uint32_t> v) {
     std::vector<std::array<uint32_t, 3>> t;
     for (std::size_t k = 0; k < v.size(); k += 3)

@@ -52,8 +52,8 @@ gmm::Heightfield flatDem(int nx, int ny, float h)
 }
 } // namespace
 
-// A flat or exactly planar DEM has zero error at every level: maxError 0 already gives
-// every block its coarsest level (one quad), two triangles a block.
+// A flat or exactly planar DEM has zero error at every level: maxError 0 already gives the
+// coarsest frame: the root drawn whole with merged nodes, else one quad a block.
 TEST(StressHeights, FlatAndPlanarAreCoarsestAtZeroError)
 {
   gmm::Heightfield plane = flatDem(97, 89, 0.0f);
@@ -61,14 +61,17 @@ TEST(StressHeights, FlatAndPlanarAreCoarsestAtZeroError)
     for (int i = 0; i < plane.nx; ++i)
       plane.z[plane.index(i, j)] = static_cast<float>(100.0 + 0.25 * i - 0.75 * j);
   for (const auto& [hf, name] : { std::pair{ flatDem(97, 89, 123.5f), "flat" }, std::pair{ plane, "plane" } })
+  for (bool merged : { true, false })
   {
     gmm::Engine e;
     ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+    e.setMergedNodes(merged);
     const gmm::FrameStats s = e.updateForError(0.0);
     const gmm::Quadtree& qt = e.quadtree();
     for (int b = 0; b < qt.blockCount(); ++b)
-      EXPECT_EQ(e.levels()[b], refTopLevel(qt.blockWidth(b), qt.blockHeight(b))) << name << " block " << b;
-    EXPECT_EQ(s.triangles, 2u * qt.blockCount()) << name;
+      EXPECT_EQ(e.levels()[b], merged ? gmm::kCoveredLevel : refTopLevel(qt.blockWidth(b), qt.blockHeight(b)))
+        << name << " block " << b;
+    EXPECT_EQ(s.triangles, coarsestTriangles(qt.blockCols, qt.blockRows, merged)) << name;
     EXPECT_EQ(s.maxGeometricError, 0.0) << name;
     expectGoodFrame(e, nullptr, 0.0, name);
     expectRenders(hf, name);

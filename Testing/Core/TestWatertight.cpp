@@ -290,11 +290,31 @@ TEST(Watertight, MinimumBlockSizeRandomSizes)
   EXPECT_GT(tally.mixed, cases / 3);
 }
 
+// Pairs of side neighbours where one block is drawn by itself and the other by a merged
+// node: the borders that merged-node stitching must keep closed.
+static int mergedBorders(const gmm::Quadtree& qt, const std::vector<int8_t>& levels)
+{
+  int n = 0;
+  for (int r = 0; r < qt.blockRows; ++r)
+    for (int c = 0; c < qt.blockCols; ++c)
+    {
+      const int b = qt.blockIndex(c, r);
+      const int right = c + 1 < qt.blockCols ? b + 1 : -1, up = r + 1 < qt.blockRows ? b + qt.blockCols : -1;
+      for (int nb : { right, up })
+        if (nb >= 0 && ((levels[b] >= 0 && levels[nb] == gmm::kCoveredLevel) ||
+                         (levels[nb] >= 0 && levels[b] == gmm::kCoveredLevel)))
+          ++n;
+    }
+  return n;
+}
+
 // End to end: the levels Engine::update selects for random cameras give watertight meshes
-// (culled blocks count as undrawn). The minimum block size has its own case below.
+// (culled blocks count as undrawn). The minimum block size has its own case below. Many
+// frames must join merged nodes to blocks drawn by themselves, or the test proves little.
 TEST(Watertight, EngineUpdateFramesAreWatertight)
 {
   Rng rng(8080);
+  int frames = 0, mergedFrames = 0;
   for (int t = 0; t < 30 && !HasFailure(); ++t)
   {
     const int nx = randInt(rng, 2, 160), ny = randInt(rng, 2, 160);
@@ -318,14 +338,19 @@ TEST(Watertight, EngineUpdateFramesAreWatertight)
       MeshCheckOptions opt;
       opt.drawn.resize(e.levels().size());
       for (std::size_t b = 0; b < e.levels().size(); ++b)
-        opt.drawn[b] = e.levels()[b] >= 0;
+        opt.drawn[b] = gmm::drawnLevel(e.levels()[b]);
       MeshCheckResult res = checkMesh(hf, e.quadtree().colStart, e.quadtree().rowStart, e.indices(), opt);
       EXPECT_EQ(res.error, "") << nx << "x" << ny << " block " << maxQ << " tau " << tau;
       EXPECT_EQ(st.triangles, res.triangles);
+      ++frames;
+      mergedFrames += mergedBorders(e.quadtree(), e.levels()) > 0;
       if (HasFailure())
         return;
     }
   }
+  std::cout << "[ engine frames ] " << frames << " frames, " << mergedFrames
+            << " with merged nodes beside single blocks\n";
+  EXPECT_GT(mergedFrames, frames / 30); // rough terrain: few merges; the next case has more
 }
 
 // The engine at the minimum block size: the levels its own selection picks
@@ -334,7 +359,7 @@ TEST(Watertight, EngineUpdateFramesAreWatertight)
 TEST(Watertight, EngineUpdateMinimumBlockSize)
 {
   Rng rng(5);
-  int frames = 0, mixedFrames = 0;
+  int frames = 0, mixedFrames = 0, mergedFrames = 0;
   for (int t = 0; t < 40 && !HasFailure(); ++t)
   {
     const int nx = randInt(rng, 6, 60), ny = randInt(rng, 6, 60);
@@ -367,18 +392,20 @@ TEST(Watertight, EngineUpdateMinimumBlockSize)
       MeshCheckOptions opt;
       opt.drawn.resize(e.levels().size());
       for (std::size_t b = 0; b < e.levels().size(); ++b)
-        opt.drawn[b] = e.levels()[b] >= 0;
+        opt.drawn[b] = gmm::drawnLevel(e.levels()[b]);
       const MeshCheckResult res = checkMesh(hf, e.quadtree().colStart, e.quadtree().rowStart, e.indices(), opt);
       EXPECT_EQ(res.error, "") << nx << "x" << ny << " frame " << k;
       EXPECT_GT(res.triangles, 0u) << nx << "x" << ny << " frame " << k;
       EXPECT_EQ(res.triangles, e.stats().triangles);
       ++frames;
       mixedFrames += mixedNeighbours(e.quadtree(), e.levels()).first > 0;
+      mergedFrames += mergedBorders(e.quadtree(), e.levels()) > 0;
       if (HasFailure())
         return;
     }
   }
   std::cout << "[ minimum block size ] engine: " << frames << " frames, " << mixedFrames
-            << " with coarse/fine neighbours\n";
+            << " with coarse/fine neighbours, " << mergedFrames << " with merged nodes beside single blocks\n";
   EXPECT_GT(mixedFrames, frames / 4);
+  EXPECT_GT(mergedFrames, frames / 10);
 }

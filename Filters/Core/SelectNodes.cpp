@@ -1,0 +1,200 @@
+#include "SelectNodes.h"
+
+#include "Levels.h"
+#include "Tessellate.h"
+
+#include <algorithm>
+
+namespace gmm
+{
+
+namespace
+{
+
+class Walk
+{
+public:
+  Walk(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
+    const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
+    NodeScratch& ns)
+    : qt_(qt)
+    , table_(table)
+    , frustum_(frustum)
+    , factorOf_(factorOf)
+    , tau_(tau)
+    , out_(out)
+    , ns_(ns)
+  {
+  }
+
+  // Reaches the blocks below `node` that are in view, drawing nodes whole where allowed;
+  // new blocks are appended to ns.newBlocks.
+  void node(int index, bool inside)
+  {
+    const QuadtreeNode& n = qt_.nodes[index];
+    if (!inside && frustum_)
+    {
+      const Overlap o = boxVsFrustum(n.box, *frustum_);
+      if (o == Overlap::Outside)
+      {
+        return;
+      }
+      inside = o == Overlap::Inside;
+    }
+    else
+    {
+      inside = true;
+    }
+    if (n.childCount == 0)
+    {
+      out_.blocks.push_back(n.block);
+      ns_.newBlocks.push_back(n.block);
+      return;
+    }
+    const float e = table_.mergedError[index];
+    if (!ns_.split[index] && e < std::numeric_limits<float>::infinity())
+    {
+      const double f = factorOf_(n.box);
+      if (e <= errorBudget(tau_, f))
+      {
+        merge(index, f);
+        return;
+      }
+    }
+    for (int k = 0; k < n.childCount; ++k)
+    {
+      node(n.firstChild + k, inside);
+    }
+  }
+
+  void merge(int index, double f)
+  {
+    const QuadtreeNode& n = qt_.nodes[index];
+    ns_.merged[index] = 1;
+    ns_.touched.push_back(index);
+    out_.merged.push_back(index);
+    out_.mergedFactor.push_back(f);
+    setCovered(n, kCoveredLevel);
+  }
+
+  // Splits the merged node that covers block b and walks its children.
+  void splitCovering(int b)
+  {
+    const int c = b % qt_.blockCols, r = b / qt_.blockCols;
+    int index = 0;
+    while (!ns_.merged[index])
+    {
+      const QuadtreeNode& n = qt_.nodes[index];
+      int next = -1;
+      for (int k = 0; k < n.childCount && next < 0; ++k)
+      {
+        const QuadtreeNode& ch = qt_.nodes[n.firstChild + k];
+        if (c >= ch.colBegin && c < ch.colEnd && r >= ch.rowBegin && r < ch.rowEnd)
+        {
+          next = n.firstChild + k;
+        }
+      }
+      if (next < 0)
+      {
+        return; // not covered (already split this round)
+      }
+      index = next;
+    }
+    const QuadtreeNode& n = qt_.nodes[index];
+    ns_.merged[index] = 0;
+    ns_.split[index] = 1;
+    setCovered(n, -1);
+    for (int k = 0; k < n.childCount; ++k)
+    {
+      node(n.firstChild + k, false);
+    }
+  }
+
+private:
+  void setCovered(const QuadtreeNode& n, int8_t level)
+  {
+    for (int r = n.rowBegin; r < n.rowEnd; ++r)
+    {
+      int8_t* row = out_.levels.data() + static_cast<std::size_t>(r) * qt_.blockCols;
+      std::fill(row + n.colBegin, row + n.colEnd, level);
+    }
+  }
+
+  const Quadtree& qt_;
+  const ErrorTable& table_;
+  const Frustum* frustum_;
+  const std::function<double(const Box&)>& factorOf_;
+  double tau_;
+  NodeSelection& out_;
+  NodeScratch& ns_;
+};
+
+} // namespace
+
+void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
+  const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
+  NodeScratch& ns, SelectionScratch& scratch)
+{
+  const std::size_t blocks = static_cast<std::size_t>(qt.blockCount());
+  out.blocks.clear();
+  out.merged.clear();
+  out.mergedFactor.clear();
+  out.levels.assign(blocks, -1);
+  out.factor.resize(blocks);
+  scratch.budget.resize(blocks);
+  // Flags are cleared where last frame set them: the walk costs what it visits.
+  ns.merged.resize(qt.nodes.size(), 0);
+  ns.split.resize(qt.nodes.size(), 0);
+  for (int index : ns.touched)
+  {
+    ns.merged[index] = 0;
+    ns.split[index] = 0;
+  }
+  ns.touched.clear();
+  ns.newBlocks.clear();
+  if (qt.nodes.empty())
+  {
+    return;
+  }
+  Walk walk(qt, table, frustum, factorOf, tau, out, ns);
+  walk.node(0, false);
+  for (;;)
+  {
+    for (int b : ns.newBlocks)
+    {
+      out.factor[b] = factorOf(qt.blockBox[b]);
+      scratch.budget[b] = errorBudget(tau, out.factor[b]);
+      out.levels[b] = static_cast<int8_t>(coarsestWithin(table, b,
+        topLevel(qt.blockWidth(b), qt.blockHeight(b)), scratch.budget[b]));
+    }
+    ns.newBlocks.clear();
+    fixStrips(qt, table, scratch.budget, out.blocks, out.levels, scratch);
+    if (scratch.splitRequests.empty())
+    {
+      break;
+    }
+    const std::vector<int> requests = scratch.splitRequests;
+    for (int b : requests)
+    {
+      if (out.levels[b] == kCoveredLevel)
+      {
+        walk.splitCovering(b);
+      }
+    }
+  }
+  // Nodes split after being merged leave stale entries: keep the ones still merged.
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < out.merged.size(); ++k)
+  {
+    if (ns.merged[out.merged[k]])
+    {
+      out.merged[kept] = out.merged[k];
+      out.mergedFactor[kept] = out.mergedFactor[k];
+      ++kept;
+    }
+  }
+  out.merged.resize(kept);
+  out.mergedFactor.resize(kept);
+}
+
+} // namespace gmm

@@ -1,0 +1,51 @@
+// Hierarchical selection: culling and level choice in one walk down the quadtree, which
+// draws a node whole (a merged node, Tessellate.h) where its exact error projects within
+// the budget, and only descends where it does not. Far terrain then costs a few fans
+// instead of one coarsest block per leaf, in triangles and in per-frame work.
+//
+// The blocks the walk reaches are chosen as selectLevels does (coarsest level within the
+// budget, then fixStrips). A block beside a merged node draws that side with its corners
+// only; when that strip does not fit the block's budget, the merged node is split (its
+// children are walked in turn) and the blocks are re-checked, until every drawn block and
+// every merged node fits. Each split goes one level down the quadtree, so this ends.
+#pragma once
+
+#include "ErrorTable.h"
+#include "Quadtree.h"
+#include "SelectLevels.h"
+#include "View.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace gmm
+{
+
+// Buffers the walk reuses from frame to frame (per engine).
+struct NodeScratch
+{
+  std::vector<uint8_t> merged;   // per node: drawn whole this frame
+  std::vector<uint8_t> split;    // per node: may not be drawn whole this frame
+  std::vector<int> touched;      // nodes whose flags are set (cleared next frame)
+  std::vector<int> newBlocks;    // blocks reached by the last walk
+};
+
+// The selection: blocks drawn one by one (levels >= 0, listed in `blocks`), merged nodes
+// (`merged`, with their factors in `mergedFactor`), and kCoveredLevel for the blocks below
+// those. `frustum` null: everything is in view (view-independent mode). factorOf(box):
+// pixels per unit of error for the box (1 in view-independent mode, tau then a length).
+struct NodeSelection
+{
+  std::vector<int> blocks;
+  std::vector<double> factor; // per block (blockCount), for the listed blocks
+  std::vector<int8_t> levels; // per block
+  std::vector<int> merged;
+  std::vector<double> mergedFactor;
+};
+
+void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
+  const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
+  NodeScratch& nodeScratch, SelectionScratch& scratch);
+
+} // namespace gmm
