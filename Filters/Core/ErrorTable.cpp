@@ -367,12 +367,25 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
 }
 
 // A merged node's fan over every sample of the node; nodata anywhere below it is +inf
-// (the fan would draw over the hole).
+// (the fan would draw over the hole). Nodes above kExactMergedHeight get a bound instead:
+// every fan vertex is a sample of the node, so the fan lies within the node's height range
+// and no sample is further from it than that range. Such nodes are drawn only from far
+// away, and computing their fans exactly would cost the table one more pass over every
+// sample per level.
 float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scratch& scratch)
 {
   if (!mergeableNode(qt, node))
   {
     return kInf;
+  }
+  const QuadtreeNode& n = qt.nodes[node];
+  if (n.height > kExactMergedHeight)
+  {
+    for (int r = n.rowBegin; r < n.rowEnd; ++r)
+      for (int c = n.colBegin; c < n.colEnd; ++c)
+        if (qt.blockHasNodata[qt.blockIndex(c, r)])
+          return kInf;
+    return roundUpToFloat(n.box.hi.z - n.box.lo.z);
   }
   scratch.triangles.clear();
   emitMergedNodeGrid(qt, node, scratch.triangles);

@@ -21,6 +21,9 @@
 namespace gmm
 {
 
+// Merged nodes up to this height above the leaves (about 8 x 8 blocks) have exact errors.
+constexpr int kExactMergedHeight = 3;
+
 struct ErrorTable
 {
   int levels = 0; // entries per block (top level of the largest block + 1)
@@ -34,8 +37,9 @@ struct ErrorTable
   // in n. Zero where unused.
   std::vector<float> stripError;
   int pairs = 0; // levels * (levels - 1) / 2
-  // mergedError[node]: exact error of quadtree node `node` drawn whole (Tessellate.h,
-  // merged nodes: the fan over its perimeter); +inf for leaves, nodes that are not
+  // mergedError[node]: error of quadtree node `node` drawn whole (Tessellate.h, merged
+  // nodes: the fan over its perimeter): exact up to kExactMergedHeight levels above the
+  // leaves, the node's height range (a bound) above; +inf for leaves, nodes that are not
   // mergeable and nodes over nodata.
   std::vector<float> mergedError;
 

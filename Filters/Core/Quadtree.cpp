@@ -109,12 +109,15 @@ void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
   qt.nodes[nodeIndex].firstChild = first;
   qt.nodes[nodeIndex].childCount = n;
   Box box = emptyBox();
+  int height = 0;
   for (int k = 0; k < n; ++k)
   {
     buildNode(qt, first + k, ranges[k][0], ranges[k][1], ranges[k][2], ranges[k][3]);
     grow(box, qt.nodes[first + k].box);
+    height = std::max(height, qt.nodes[first + k].height + 1);
   }
   qt.nodes[nodeIndex].box = box;
+  qt.nodes[nodeIndex].height = height;
 }
 
 } // namespace

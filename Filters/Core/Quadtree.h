@@ -34,6 +34,7 @@ struct QuadtreeNode
   // The block columns [colBegin, colEnd) and rows [rowBegin, rowEnd) below the node: it
   // covers samples colStart[colBegin]..colStart[colEnd] x rowStart[rowBegin]..rowStart[rowEnd].
   int32_t colBegin = 0, colEnd = 0, rowBegin = 0, rowEnd = 0;
+  int32_t height = 0; // levels down to its deepest leaf (0 for a leaf)
 };
 
 struct Quadtree

@@ -88,15 +88,23 @@ inline int refTopLevel(int w, int h)
   return m;
 }
 
-// Triangles of the coarsest frame (a huge tolerance, no nodata), from the design rather
-// than the engine: with merged nodes the root is drawn whole when it spans at least 2 x 2
-// blocks, a fan with one triangle per block side on the DEM's border, 2 (cols + rows);
-// otherwise every block is one quad, two triangles.
-inline std::size_t coarsestTriangles(int blockCols, int blockRows, bool mergedNodes = true)
+// Triangles of the coarsest frame (a huge tolerance, no nodata) below quadtree node
+// `node`, from the design rather than the engine: with merged nodes, the highest node on
+// each path that spans at least 2 x 2 blocks at an odd height above the leaves is drawn
+// whole, a fan with one triangle per block side on its border, 2 (cols + rows); a block
+// not below one is a single quad, two triangles.
+inline std::size_t coarsestTriangles(const gmm::Quadtree& qt, bool mergedNodes = true, int node = 0)
 {
-  if (mergedNodes && blockCols >= 2 && blockRows >= 2)
-    return 2u * static_cast<std::size_t>(blockCols + blockRows);
-  return 2u * static_cast<std::size_t>(blockCols) * blockRows;
+  const gmm::QuadtreeNode& n = qt.nodes[node];
+  const int cols = n.colEnd - n.colBegin, rows = n.rowEnd - n.rowBegin;
+  if (mergedNodes && cols >= 2 && rows >= 2 && n.height % 2 == 1)
+    return 2u * static_cast<std::size_t>(cols + rows);
+  if (n.childCount == 0)
+    return 2u;
+  std::size_t sum = 0;
+  for (int k = 0; k < n.childCount; ++k)
+    sum += coarsestTriangles(qt, mergedNodes, n.firstChild + k);
+  return sum;
 }
 
 // Reference recursive halving (Quadtree.h): first half = floor(q / 2).

@@ -105,7 +105,7 @@ TEST(StressCameras, FarAwayAndUnnormalisedDirections)
   expectGoodFrame(f.e, &far, 1.0, "1e9 m away");
   const gmm::Quadtree& qt = f.e.quadtree();
   EXPECT_EQ(s.visibleBlocks, qt.blockCount());
-  EXPECT_EQ(s.triangles, coarsestTriangles(qt.blockCols, qt.blockRows));
+  EXPECT_EQ(s.triangles, coarsestTriangles(qt));
   // 1e300 m: |eye - corner|^2 overflows a double; the blocks must still be drawn (coarsest),
   // not dropped by a NaN factor.
   gmm::View absurd = looking({ 1920, -1e300, 1000 }, { 0, 1, 0 });
@@ -113,7 +113,7 @@ TEST(StressCameras, FarAwayAndUnnormalisedDirections)
   const gmm::FrameStats a = f.e.update(absurd, 1.0);
   expectGoodFrame(f.e, &absurd, 1.0, "1e300 m away");
   EXPECT_EQ(a.visibleBlocks, qt.blockCount());
-  EXPECT_EQ(a.triangles, coarsestTriangles(qt.blockCols, qt.blockRows));
+  EXPECT_EQ(a.triangles, coarsestTriangles(qt));
   // near plane 1e-300: factors overflow to +inf next to the eye; those blocks get a zero
   // budget (finest level) and the statistics stay finite.
   gmm::View tinyNear = looking({ 1920, 1650, 1200 }, { 0, 1, -0.3 });

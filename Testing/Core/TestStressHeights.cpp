@@ -71,7 +71,7 @@ TEST(StressHeights, FlatAndPlanarAreCoarsestAtZeroError)
     for (int b = 0; b < qt.blockCount(); ++b)
       EXPECT_EQ(e.levels()[b], merged ? gmm::kCoveredLevel : refTopLevel(qt.blockWidth(b), qt.blockHeight(b)))
         << name << " block " << b;
-    EXPECT_EQ(s.triangles, coarsestTriangles(qt.blockCols, qt.blockRows, merged)) << name;
+    EXPECT_EQ(s.triangles, coarsestTriangles(qt, merged)) << name;
     EXPECT_EQ(s.maxGeometricError, 0.0) << name;
     expectGoodFrame(e, nullptr, 0.0, name);
     expectRenders(hf, name);

@@ -38,7 +38,7 @@ void expectSizeRenders(const gmm::Heightfield& hf, int maxQ, const std::string& 
   EXPECT_EQ(full.maxGeometricError, 0.0) << what;
   const gmm::FrameStats coarse = e.updateForError(1e30);
   expectGoodFrame(e, nullptr, 0.0, what + ", coarsest");
-  EXPECT_EQ(coarse.triangles, coarsestTriangles(qt.blockCols, qt.blockRows))
+  EXPECT_EQ(coarse.triangles, coarsestTriangles(qt))
     << what << ": the root whole, or one quad a block, expected";
   const gmm::View v = scaledView(hf);
   for (double tau : { 0.5, 4.0 })

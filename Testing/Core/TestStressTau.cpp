@@ -90,7 +90,7 @@ TEST(StressTau, UpdateForErrorRange)
     if (err >= 1e30)
     {
       EXPECT_TRUE(f.allCoarsest());
-      EXPECT_EQ(s.triangles, coarsestTriangles(f.e.quadtree().blockCols, f.e.quadtree().blockRows));
+      EXPECT_EQ(s.triangles, coarsestTriangles(f.e.quadtree()));
     }
   }
   for (double err : { -1.0, kNaN, kInf, -kInf })

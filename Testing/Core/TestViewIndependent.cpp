@@ -46,7 +46,7 @@ TEST(ViewIndependent, VerticalErrorBoundAndMonotoneTriangleCount)
       if (maxErr == 0.0)
         EXPECT_EQ(st.triangles, 2 * static_cast<std::size_t>(nx - 1) * (ny - 1));
       if (maxErr == 1e4)
-        EXPECT_EQ(st.triangles, coarsestTriangles(e.quadtree().blockCols, e.quadtree().blockRows))
+        EXPECT_EQ(st.triangles, coarsestTriangles(e.quadtree()))
           << "a huge tolerance should draw the root whole, or every block as one quad";
       MeshCheckResult mc = checkMesh(hf, e.quadtree().colStart, e.quadtree().rowStart, e.indices(), {});
       EXPECT_EQ(mc.error, "") << nx << "x" << ny << " maxErr " << maxErr;
