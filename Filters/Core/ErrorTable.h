@@ -21,8 +21,8 @@
 namespace gmm
 {
 
-// Merged nodes up to this height above the leaves (about 8 x 8 blocks) have exact errors.
-constexpr int kExactMergedHeight = 3;
+// Merged nodes up to this height above the leaves (about 16 x 16 blocks) have exact errors.
+constexpr int kExactMergedHeight = 4;
 
 struct ErrorTable
 {

@@ -309,12 +309,9 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
 bool mergeableNode(const Quadtree& qt, int node)
 {
   // At least 2 x 2 blocks: the fan then has no more triangles than its blocks at their
-  // coarsest (2 (c + r) <= 2 c r), and its centre sample is strictly inside. Only every
-  // other level of the tree (1, 3, 5... above the leaves: about 2, 8, 32... blocks a side):
-  // each merged level costs the table one pass over every sample, and a factor of 4 in
-  // size between merged levels loses little (measured in benchmarks-core.md).
+  // coarsest (2 (c + r) <= 2 c r), and its centre sample is strictly inside.
   const QuadtreeNode& n = qt.nodes[node];
-  return n.colEnd - n.colBegin >= 2 && n.rowEnd - n.rowBegin >= 2 && n.height % 2 == 1;
+  return n.colEnd - n.colBegin >= 2 && n.rowEnd - n.rowBegin >= 2;
 }
 
 void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)

@@ -94,8 +94,7 @@ inline bool drawnLevel(int level)
 }
 
 // True when `node` may be drawn whole: a node over at least 2 x 2 blocks (fewer
-// triangles than its blocks at their coarsest, and a centre sample strictly inside) at an
-// odd height above the leaves (every other level, to halve the table's cost).
+// triangles than its blocks at their coarsest, and a centre sample strictly inside).
 bool mergeableNode(const Quadtree& qt, int node);
 
 // The perimeter of a node, counter-clockwise in (i, j) from its south-west corner: every

@@ -90,14 +90,14 @@ inline int refTopLevel(int w, int h)
 
 // Triangles of the coarsest frame (a huge tolerance, no nodata) below quadtree node
 // `node`, from the design rather than the engine: with merged nodes, the highest node on
-// each path that spans at least 2 x 2 blocks at an odd height above the leaves is drawn
-// whole, a fan with one triangle per block side on its border, 2 (cols + rows); a block
-// not below one is a single quad, two triangles.
+// each path that spans at least 2 x 2 blocks is drawn whole, a fan with one triangle per
+// block side on its border, 2 (cols + rows); a block not below one is a single quad, two
+// triangles.
 inline std::size_t coarsestTriangles(const gmm::Quadtree& qt, bool mergedNodes = true, int node = 0)
 {
   const gmm::QuadtreeNode& n = qt.nodes[node];
   const int cols = n.colEnd - n.colBegin, rows = n.rowEnd - n.rowBegin;
-  if (mergedNodes && cols >= 2 && rows >= 2 && n.height % 2 == 1)
+  if (mergedNodes && cols >= 2 && rows >= 2)
     return 2u * static_cast<std::size_t>(cols + rows);
   if (n.childCount == 0)
     return 2u;
