@@ -3,6 +3,7 @@
 //   build/Testing/Benchmarks/bench_rtin              # tables below (about 2 minutes)
 //   build/Testing/Benchmarks/bench_rtin --validate   # RTIN counts == martini's on Fuji (a test)
 //   GEOMIPMAP_BENCH_SYNTH=0 ...                      # without the 4097^2 synthetic DEM
+//   GEOMIPMAP_BENCH_MERGED=0 ...                     # ours block by block (no merged nodes)
 //
 // 1. View-independent, Fuji tile (../shared/data/fuji_terrain_rgb.png, martini's fixture):
 //    triangles and time of the RTIN (martini's algorithm, RtinReference.h, on the 513 grid
@@ -150,6 +151,18 @@ std::string loadPugetSound(const std::string& path, rtin::Grid& grid)
   return "";
 }
 
+// Our engine as the benchmark runs it: merged nodes unless GEOMIPMAP_BENCH_MERGED=0.
+std::unique_ptr<gmm::Engine> makeEngine(const gmm::Heightfield& hf, int blockQuads)
+{
+  auto e = std::make_unique<gmm::Engine>();
+  const std::string err = e->setHeightfield(hf, blockQuads, 0);
+  if (!err.empty())
+    std::printf("engine: %s\n", err.c_str());
+  const char* merged = std::getenv("GEOMIPMAP_BENCH_MERGED");
+  e->setMergedNodes(!(merged && std::strcmp(merged, "0") == 0));
+  return e;
+}
+
 gmm::Heightfield heightfieldOf(const rtin::Grid& g)
 {
   gmm::Heightfield hf;
@@ -266,12 +279,7 @@ void viewIndependentTable(const rtin::Grid& grid, const gmm::Heightfield& tile)
   std::printf("|---|---|---|---|---|---|---|\n");
   std::vector<std::unique_ptr<gmm::Engine>> engines;
   for (int b : blocks)
-  {
-    engines.push_back(std::make_unique<gmm::Engine>());
-    const std::string err = engines.back()->setHeightfield(tile, b, 0);
-    if (!err.empty())
-      std::printf("engine: %s\n", err.c_str());
-  }
+    engines.push_back(makeEngine(tile, b));
   for (const MartiniCount& m : kMartiniFuji)
   {
     std::size_t n = 0;
@@ -314,10 +322,7 @@ void flightTable(const char* name, const rtin::Grid& grid, int frames)
   const int blocks[] = { 64, 32, 16, 8 };
   std::vector<std::unique_ptr<gmm::Engine>> engines;
   for (int b : blocks)
-  {
-    engines.push_back(std::make_unique<gmm::Engine>());
-    engines.back()->setHeightfield(hf, b, 0);
-  }
+    engines.push_back(makeEngine(hf, b));
   const auto flights = makeFlights(grid, frames);
   std::printf("| flight | tau | RTIN tris (mean) | ours/RTIN b64 | b32 | b16 | b8 |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
