@@ -224,15 +224,31 @@ double BoxProjector::factor(const Box& box) const
     return visibleFactor(ppu_ / std::max(d, view_.nearDistance));
   }
   // The world image of the box is the parallelepiped spanned by its transformed corners;
-  // distance is convex and depth linear, so both extremes are at corners.
-  double maxDist = 0.0, minDepth = std::numeric_limits<double>::infinity();
+  // distance is convex and depth linear, so both extremes are at corners. Each corner is
+  // toWorld * (x, y, z, 1) summed in glm's order, (c0 x + c1 y) + (c2 z + c3), from
+  // per-axis terms: the very same doubles with 6 products instead of 8 matrix-vector
+  // products; the largest distance is
+  // the root of the largest square (sqrt is monotone and correctly rounded: the same value).
+  const glm::dvec3 c0(toWorld_[0]), c1(toWorld_[1]), c2(toWorld_[2]), c3(toWorld_[3]);
+  const glm::dvec3 xs[2] = { c0 * box.lo.x, c0 * box.hi.x };
+  const glm::dvec3 ys[2] = { c1 * box.lo.y, c1 * box.hi.y };
+  const glm::dvec3 zs[2] = { c2 * box.lo.z, c2 * box.hi.z };
+  double maxSquare = 0.0, minDepth = std::numeric_limits<double>::infinity();
+  glm::dvec3 q[8];
   for (int k = 0; k < 8; ++k)
   {
-    const glm::dvec4 corner(
-      (k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z, 1.0);
-    const glm::dvec3 q = glm::dvec3(toWorld_ * corner) - view_.eye;
-    maxDist = std::max(maxDist, robustLength(q));
-    minDepth = std::min(minDepth, glm::dot(q, cam_.forward));
+    q[k] = (xs[k & 1] + ys[(k >> 1) & 1]) + (zs[(k >> 2) & 1] + c3) - view_.eye;
+    maxSquare = std::max(maxSquare, glm::dot(q[k], q[k]));
+    minDepth = std::min(minDepth, glm::dot(q[k], cam_.forward));
+  }
+  double maxDist = std::sqrt(maxSquare);
+  if (!(std::isfinite(maxSquare) && maxSquare >= std::numeric_limits<double>::min()))
+  {
+    maxDist = 0.0; // a square overflowed or underflowed: take each length robustly
+    for (const glm::dvec3& v : q)
+    {
+      maxDist = std::max(maxDist, robustLength(v));
+    }
   }
   const double depth = std::max(minDepth, view_.nearDistance);
   // Divide twice rather than by depth^2, which overflows first. +inf (a near plane of
