@@ -36,6 +36,7 @@ struct vtkGeoMipMapFilter::Internals
   // The terrain the engine uses (shared with every other consumer of the input image).
   vtkSmartPointer<vtkGeoMipMapTerrain> Terrain;
   gmm::MorphFrame Morph; // this frame's geomorph factors (all 0 when not morphing)
+  gmm::MorphCache MorphCache;
 };
 
 vtkStandardNewMacro(vtkGeoMipMapFilter);
@@ -129,8 +130,8 @@ int vtkGeoMipMapFilter::RequestData(
     in.Engine.lastError().empty();
   if (morph)
   {
-    gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.errorTable(),
-      in.Engine.levels(), in.Engine.pixelFactors(), this->PixelError, in.Morph);
+    gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
+      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph);
   }
   else if (!in.Engine.empty())
   {

@@ -1,7 +1,6 @@
 #include "Morph.h"
 
 #include "Levels.h"
-#include "SelectLevels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,27 +65,6 @@ double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int
                         : h11 + (1.0 - fx) * (h01 - h11) + (1.0 - fy) * (h10 - h11);
 }
 
-// Largest |polyline at target - height| over the samples of an edge at `level` that the
-// target level drops; +inf when nodata is involved (such an edge never morphs).
-template <typename At>
-double edgeDisplacement(int first, int last, int level, int target, At at)
-{
-  double worst = 0.0;
-  const long long step = 1LL << level;
-  for (long long s = first + step; s < last; s += step)
-  {
-    const double h = at(static_cast<int>(s));
-    const double c = polylineAt(first, last, target, static_cast<int>(s), at);
-    const double d = std::fabs(c - h);
-    if (!std::isfinite(d))
-    {
-      return kInf;
-    }
-    worst = std::max(worst, d);
-  }
-  return worst;
-}
-
 double clamp01(double t)
 {
   return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; // NaN -> 0
@@ -104,15 +82,47 @@ float factorDown(double t)
   return f;
 }
 
-// Factor an edge whose vertices move by at most d may take in a block with slack s
-// (tau / f - E, < 0 when the block must not morph).
-double allowance(double slack, double d)
+// Largest x in [0, 1] with a + x (b - a) <= limit, given a <= limit (the linear bound at 0
+// holds): how far a linear bound may be pushed.
+double linearReach(double a, double b, double limit)
 {
-  if (slack < 0.0)
+  if (b <= limit)
   {
-    return 0.0;
+    return 1.0;
   }
-  return d > 0.0 ? clamp01(slack / d) : 1.0;
+  return b > a ? clamp01((limit - a) / (b - a)) : 0.0;
+}
+
+// Largest t in [0, 1] with stripBound(e, t, t) <= limit on all of [0, t] (it holds at 0).
+// Along the diagonal the bound is a parabola q; [0, t] is within limit when q(t) is and
+// so is q's maximum if it lies inside, a property of prefixes: bisection finds the end.
+double diagonalReach(const double e[4], double limit)
+{
+  const double c = e[0], b = e[1] + e[2] - 2.0 * e[0], a = e[0] - e[1] - e[2] + e[3];
+  auto q = [&](double t) { return c + t * (b + t * a); };
+  const double vertex = a < 0.0 ? -b / (2.0 * a) : -1.0;
+  auto ok = [&](double t) { return q(t) <= limit && !(vertex > 0.0 && vertex < t && q(vertex) > limit); };
+  if (ok(1.0))
+  {
+    return 1.0;
+  }
+  double lo = 0.0, hi = 1.0;
+  for (int k = 0; k < 50; ++k)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (ok(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// The four edges of block (c, r) in a frame: South, East, North, West (Tessellate's Side).
+std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int c, int r)
+{
+  const int bc = qt.blockCols;
+  return { &f.hEdges[static_cast<std::size_t>(r) * bc + c],
+    &f.vEdges[static_cast<std::size_t>(r) * (bc + 1) + c + 1],
+    &f.hEdges[static_cast<std::size_t>(r + 1) * bc + c],
+    &f.vEdges[static_cast<std::size_t>(r) * (bc + 1) + c] };
 }
 } // namespace
 
@@ -138,164 +148,214 @@ void clearMorph(const Quadtree& qt, MorphFrame& out)
   out.maxBoundPixels = 0.0;
 }
 
-void computeMorph(const Heightfield& hf, const Quadtree& qt, const ErrorTable& table,
-  const std::vector<int8_t>& levels, const std::vector<double>& factor, double tau,
-  MorphFrame& out)
+void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out)
 {
   clearMorph(qt, out);
   const int blocks = qt.blockCount();
-  // Per drawn block: its certified error E, slack tau / f - E (-1: no morph) and the
-  // largest displacement of any of its vertices (for the reported bound).
-  std::vector<double> certified(blocks, 0.0), slack(blocks, -1.0), moved(blocks, 0.0);
+  if (cache.heights != hf.heights() || static_cast<int>(cache.key.size()) != blocks)
+  {
+    cache.key.assign(blocks, std::array<int8_t, 10>{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 });
+    cache.errors.assign(blocks, PartErrors());
+    cache.heights = hf.heights();
+  }
+  auto budget = [&](int b) {
+    const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
+    return std::isfinite(f) && f > 0.0 ? tau / f : -1.0; // -1: does not morph
+  };
+
+  // Edge levels and targets: an edge takes the level of the coarser block (Tessellate) and
+  // moves toward the next level of the block(s) that set it.
   for (int b = 0; b < blocks; ++b)
   {
     const int m = levels[b];
-    if (m < 0)
+    const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+    if (m >= 0 && blockShape(w, h, m) == BlockShape::Ring)
     {
-      continue;
-    }
-    certified[b] = blockCertifiedError(qt, table, levels, b);
-    const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
-    if (std::isfinite(f) && f > 0.0)
-    {
-      slack[b] = std::max(0.0, tau / f - certified[b]);
-    }
-    const int target = nextValidLevel(qt.blockWidth(b), qt.blockHeight(b), m);
-    out.blockTarget[b] = static_cast<int8_t>(target);
-    if (target < 0)
-    {
-      continue;
-    }
-    // Every interior vertex moves to the level-`target` surface at a sample, whose distance
-    // to the sample is at most that level's exact error.
-    const double dInt = table.ownExact(b, target);
-    out.blockT[b] = factorDown(allowance(slack[b], dInt));
-    moved[b] = out.blockT[b] > 0.0f ? out.blockT[b] * dInt : 0.0;
-  }
-
-  // One shared edge between blocks a and b (either -1 when absent), along [first, last].
-  auto edge = [&](int a, int b, int first, int last, auto at) {
-    MorphEdge e;
-    const int la = a >= 0 ? levels[a] : -1, lb = b >= 0 ? levels[b] : -1;
-    const int n = std::max(la, lb);
-    if (n < 0)
-    {
-      return e;
-    }
-    e.level = static_cast<int8_t>(n);
-    int target = -1;
-    double tOwner = 1.0;
-    for (int k : { a, b })
-    {
-      if (k >= 0 && levels[k] == n && out.blockTarget[k] >= 0)
-      {
-        target = target < 0 ? out.blockTarget[k] : std::min<int>(target, out.blockTarget[k]);
-        tOwner = std::min(tOwner, static_cast<double>(out.blockT[k]));
-      }
-    }
-    if (target < 0)
-    {
-      return e;
-    }
-    e.target = static_cast<int8_t>(target);
-    const double d = edgeDisplacement(first, last, n, target, at);
-    double t = tOwner;
-    for (int k : { a, b })
-    {
-      if (k >= 0 && levels[k] >= 0)
-      {
-        t = std::min(t, allowance(slack[k], d));
-      }
-    }
-    e.t = factorDown(t);
-    if (e.t > 0.0f)
-    {
-      for (int k : { a, b })
-      {
-        if (k >= 0 && levels[k] >= 0)
-        {
-          moved[k] = std::max(moved[k], e.t * d);
-        }
-      }
-    }
-    return e;
-  };
-
-  const int bc = qt.blockCols, br = qt.blockRows;
-  for (int r = 0; r < br; ++r)
-  {
-    for (int line = 0; line <= bc; ++line)
-    {
-      const int west = line > 0 ? qt.blockIndex(line - 1, r) : -1;
-      const int east = line < bc ? qt.blockIndex(line, r) : -1;
-      const int i = qt.colStart[line];
-      out.vEdges[static_cast<std::size_t>(r) * (bc + 1) + line] = edge(west, east, qt.rowStart[r],
-        qt.rowStart[r + 1], [&hf, i](int j) { return static_cast<double>(hf.height(i, j)); });
-    }
-  }
-  for (int line = 0; line <= br; ++line)
-  {
-    for (int c = 0; c < bc; ++c)
-    {
-      const int south = line > 0 ? qt.blockIndex(c, line - 1) : -1;
-      const int north = line < br ? qt.blockIndex(c, line) : -1;
-      const int j = qt.rowStart[line];
-      out.hEdges[static_cast<std::size_t>(line) * bc + c] = edge(south, north, qt.colStart[c],
-        qt.colStart[c + 1], [&hf, j](int i) { return static_cast<double>(hf.height(i, j)); });
+      out.blockTarget[b] = static_cast<int8_t>(nextValidLevel(w, h, m));
     }
   }
   for (int b = 0; b < blocks; ++b)
   {
-    const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
-    if (levels[b] >= 0 && std::isfinite(f) && f > 0.0)
+    if (levels[b] < 0)
     {
-      out.maxBoundPixels = std::max(out.maxBoundPixels, (certified[b] + moved[b]) * f);
+      continue;
     }
+    const BlockConfig cfg = blockConfigOf(qt, levels, b);
+    for (MorphEdge* e : edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols))
+    {
+      e->level = static_cast<int8_t>(std::max<int>(e->level, cfg.level)); // both sides agree
+    }
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0 || out.blockTarget[b] < 0)
+    {
+      continue;
+    }
+    for (MorphEdge* e : edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols))
+    {
+      if (e->level == levels[b])
+      {
+        e->target = e->target < 0 ? out.blockTarget[b] : std::min(e->target, out.blockTarget[b]);
+      }
+    }
+  }
+
+  // Block factors: the inner grid, and the strips whose edge the block sets moving with it
+  // (and with the edge held, so that any lower edge factor stays certified too).
+  std::vector<const PartErrors*> parts(blocks, nullptr);
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0 || out.blockTarget[b] < 0 || budget(b) < 0.0)
+    {
+      continue;
+    }
+    const int c = b % qt.blockCols, r = b / qt.blockCols;
+    const BlockConfig cfg = blockConfigOf(qt, levels, b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, c, r);
+    std::array<int8_t, 10> key{ static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
+      static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
+      static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
+      edges[2]->target, edges[3]->target };
+    if (key != cache.key[b])
+    {
+      const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
+      cache.errors[b] = morphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, cache.scratch);
+      cache.key[b] = key;
+    }
+    const PartErrors& pe = cache.errors[b];
+    parts[b] = &pe;
+    const double x = budget(b);
+    double t = pe.innerFrozen ? 0.0 : linearReach(pe.inner[0], pe.inner[1], x);
+    for (int side = 0; side < 4; ++side)
+    {
+      const double* e = pe.side[side];
+      if (pe.sideFrozen[side])
+      {
+        t = 0.0;
+        continue;
+      }
+      t = std::min(t, linearReach(e[0], e[1], x)); // edge held (e = 0)
+      if (edges[side]->level == cfg.level && edges[side]->target >= 0)
+      {
+        t = std::min(t, diagonalReach(e, x)); // edge moving with the block
+      }
+    }
+    out.blockT[b] = factorDown(t);
+  }
+
+  // Edge factors: the largest factor of the blocks setting the edge, lowered until both
+  // sides' strips fit their budgets with their blocks' factors.
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0)
+    {
+      continue;
+    }
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (MorphEdge* e : edges)
+    {
+      if (e->target >= 0 && e->level == levels[b])
+      {
+        e->t = std::max(e->t, out.blockT[b]); // owner factor, lowered below
+      }
+    }
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0)
+    {
+      continue;
+    }
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (int side = 0; side < 4; ++side)
+    {
+      MorphEdge& e = *edges[side];
+      if (e.t <= 0.0f)
+      {
+        continue;
+      }
+      const PartErrors* pe = parts[b];
+      if (!pe || pe->sideFrozen[side])
+      {
+        e.t = 0.0f; // a block that does not morph holds its edges
+        continue;
+      }
+      const double tb = out.blockT[b];
+      const double* q = pe->side[side];
+      const double at0 = stripBound(q, 0.0, tb), at1 = stripBound(q, 1.0, tb);
+      e.t = std::min(e.t, factorDown(linearReach(at0, at1, budget(b))));
+    }
+  }
+
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (!parts[b])
+    {
+      continue;
+    }
+    const PartErrors& pe = *parts[b];
+    const double tb = out.blockT[b];
+    double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (int side = 0; side < 4; ++side)
+    {
+      bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));
+    }
+    out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
   }
 }
 
-double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  const MorphFrame& frame, int i, int j, double* factorOut)
+double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
+  const std::array<int, 4>& edgeTarget, int i, int j)
 {
   const double h = hf.height(i, j);
-  *factorOut = 0.0;
-  const int c = bandOf(qt.colStart, i), r = bandOf(qt.rowStart, j);
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
   const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
   if (onV && onH)
   {
     return h; // block corner: on every level
   }
-  if (onV)
+  if (onV || onH)
   {
-    const int line = i == i0 ? c : c + 1;
-    const MorphEdge& e = frame.vEdges[static_cast<std::size_t>(r) * (qt.blockCols + 1) + line];
-    if (e.target < 0)
+    const int side = onH ? (j == j0 ? South : North) : (i == i0 ? West : East);
+    if (edgeTarget[side] < 0)
     {
       return h;
     }
-    *factorOut = e.t;
-    return polylineAt(j0, j1, e.target, j, [&hf, i](int s) { return double(hf.height(i, s)); });
-  }
-  if (onH)
-  {
-    const int line = j == j0 ? r : r + 1;
-    const MorphEdge& e = frame.hEdges[static_cast<std::size_t>(line) * qt.blockCols + c];
-    if (e.target < 0)
+    if (onH)
     {
-      return h;
+      return polylineAt(i0, i1, edgeTarget[side], i, [&hf, j](int s) { return double(hf.height(s, j)); });
     }
-    *factorOut = e.t;
-    return polylineAt(i0, i1, e.target, i, [&hf, j](int s) { return double(hf.height(s, j)); });
+    return polylineAt(j0, j1, edgeTarget[side], j, [&hf, i](int s) { return double(hf.height(i, s)); });
   }
+  return target < 0 ? h : blockSurfaceAt(hf, i0, i1, j0, j1, target, i, j);
+}
+
+double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j, double* factorOut)
+{
+  const int c = bandOf(qt.colStart, i), r = bandOf(qt.rowStart, j);
   const int b = qt.blockIndex(c, r);
-  const int target = frame.blockTarget[b];
-  if (levels[b] < 0 || target < 0)
+  const std::array<MorphEdge*, 4> edges = edgesOf(qt, const_cast<MorphFrame&>(frame), c, r);
+  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
+  *factorOut = 0.0;
+  if (onV != onH) // on one edge (corners never move)
   {
-    return h;
+    const MorphEdge& e = *edges[onH ? (j == j0 ? South : North) : (i == i0 ? West : East)];
+    *factorOut = e.t;
   }
-  *factorOut = frame.blockT[b];
-  return blockSurfaceAt(hf, i0, i1, j0, j1, target, i, j);
+  else if (!onV && levels[b] >= 0)
+  {
+    *factorOut = frame.blockT[b];
+  }
+  const bool interior = !onV && !onH;
+  const int target = interior && levels[b] >= 0 ? frame.blockTarget[b] : -1;
+  return blockVertexTarget(hf, qt, b, target,
+    { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, i, j);
 }
 
 double morphedHeight(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,

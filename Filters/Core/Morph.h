@@ -19,21 +19,23 @@
 //   disagree, so morphing opens no crack.
 // - block corners never move (every level keeps them).
 //
-// Factors keep the certificate. A drawn triangle of block b whose vertices move by at most
-// d has error at most E_b + d (the moved surface is the drawn one plus a convex combination
-// of the displacements), E_b the block's certified error (blockCertifiedError). With D_int
-// the block's largest interior displacement at t = 1 (bounded by the exact error of level
-// m', which covers every sample) and D_e an edge's exact largest displacement, the factors
-//     t_b = clamp((tau / f_b - E_b) / D_int, 0, 1)
-//     t_e = clamp(min(t of the blocks setting the edge level, (tau / f - E) / D_e of both
-//           blocks), 0, 1)
-// keep E_b + max(t_b D_int, t_e D_e) <= tau / f_b for every drawn block: the morphed
-// surface is certified at tau like the unmorphed one.
+// Factors keep the certificate. The drawn height of a part (inner grid, side strip) is
+// affine in the factors of its vertices, so its error is bounded by interpolating the exact
+// errors of the part with its vertices as drawn and at their targets (MorphBounds.h):
+// (1 - t_b) E_0 + t_b E_1 for the inner grid, bilinear in (t_e, t_b) for a strip. Each
+// block takes the largest t_b that keeps its inner grid, and its strips with the edges it
+// sets moving alike, within tau / f_b; then each edge takes the factor of the block(s)
+// setting its level, lowered until the strips on both sides are within their blocks'
+// budgets. So the morphed surface is certified at tau like the unmorphed one, and a block
+// whose next level is within tau has already reached it (t = 1) where the two nest.
 #pragma once
 
-#include "ErrorTable.h"
 #include "Heightfield.h"
+#include "MorphBounds.h"
 #include "Quadtree.h"
+#include "Tessellate.h"
+
+#include <array>
 
 #include <cstdint>
 #include <vector>
@@ -66,13 +68,22 @@ struct MorphFrame
 // The next valid level above m for a w x h block (Levels.h), or -1 when m is its top level.
 int nextValidLevel(int widthQuads, int heightQuads, int m);
 
+// Per-block part errors of the configuration each block was last seen with, so that a frame
+// computes them only for blocks whose configuration or targets changed. One per engine.
+struct MorphCache
+{
+  std::vector<std::array<int8_t, 10>> key; // level, 4 edge levels, target, 4 edge targets
+  std::vector<PartErrors> errors;
+  const void* heights = nullptr; // the heights the errors are of (reset on change)
+  EmitScratch scratch;
+};
+
 // Morph factors for one frame. `levels` and `factor` (pixels per unit of stored height,
-// per block) are those of the frame (Engine::levels(), Engine::pixelFactors()); tau
-// the pixel error the levels were selected with. A block whose factor is not finite and
-// > 0 does not morph.
-void computeMorph(const Heightfield& hf, const Quadtree& qt, const ErrorTable& table,
-  const std::vector<int8_t>& levels, const std::vector<double>& factor, double tau,
-  MorphFrame& out);
+// per block) are those of the frame (Engine::levels(), Engine::pixelFactors()); tau the
+// pixel error the levels were selected with. A block whose factor is not finite and > 0
+// does not morph.
+void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out);
 
 // No morphing at all: every factor 0 (what a frame with geomorphing off draws).
 void clearMorph(const Quadtree& qt, MorphFrame& out);
@@ -84,8 +95,14 @@ double morphedHeight(const Heightfield& hf, const Quadtree& qt, const std::vecto
   const MorphFrame& frame, int i, int j);
 
 // The height of the coarse surface a vertex moves toward (its own height when it does not
-// move), i.e. morphedHeight at factor 1; exposed for tests.
+// move), i.e. morphedHeight at factor 1, and the vertex's factor; exposed for tests.
 double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const MorphFrame& frame, int i, int j, double* factorOut);
+
+// The one rule for where a vertex goes: sample (i, j) of `block` (inside or on its border)
+// when the interior moves toward level `target` and side s's edge toward the polyline at
+// level `edgeTarget[s]` (-1: does not move). Corners never move.
+double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
+  const std::array<int, 4>& edgeTarget, int i, int j);
 
 } // namespace gmm

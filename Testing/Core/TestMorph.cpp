@@ -229,6 +229,7 @@ TEST(Morph, CertifiedWhileMorphing)
     const int maxQ = 1 << randInt(rng, 3, 5);
     gmm::Engine e;
     ASSERT_EQ(e.setHeightfield(hf, maxQ, 1), "");
+    gmm::MorphCache cache;
     for (int c = 0; c < 6; ++c)
     {
       const gmm::View v = randomCamera(rng, e.heightfield());
@@ -237,7 +238,7 @@ TEST(Morph, CertifiedWhileMorphing)
         e.update(v, tau);
         ASSERT_EQ(e.lastError(), "");
         gmm::MorphFrame f;
-        gmm::computeMorph(e.heightfield(), e.quadtree(), e.errorTable(), e.levels(), e.pixelFactors(), tau, f);
+        gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, f);
         const std::vector<double> z = morphedHeights(e, f);
         bool moved = false;
         for (std::size_t k = 0; k < z.size(); ++k)
