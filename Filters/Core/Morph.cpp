@@ -11,7 +11,6 @@ namespace gmm
 
 namespace
 {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Band index of sample s in band starts `start` (size bands + 1): the band whose first
 // sample is the largest start <= s (the last band for the very last sample).

@@ -26,8 +26,7 @@
 // block takes the largest t_b that keeps its inner grid, and its strips with the edges it
 // sets moving alike, within tau / f_b; then each edge takes the factor of the block(s)
 // setting its level, lowered until the strips on both sides are within their blocks'
-// budgets. So the morphed surface is certified at tau like the unmorphed one, and a block
-// whose next level is within tau has already reached it (t = 1) where the two nest.
+// budgets. So the morphed surface is certified at tau like the unmorphed one.
 #pragma once
 
 #include "Heightfield.h"
@@ -36,7 +35,6 @@
 #include "Tessellate.h"
 
 #include <array>
-
 #include <cstdint>
 #include <vector>
 

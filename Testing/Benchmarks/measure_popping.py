@@ -14,8 +14,10 @@ the reference, both projected with frame k's camera, at every full-resolution sa
 view: the screen displacement of the drawn surface that the camera motion does not
 explain. Reported per mode: max and 99th percentile over the flight, the frames with any
 popping (> 1e-3 px), the largest screen error of a frame against the true surface (the
-certificate: <= tau) and the filter's median time per frame (CPU, LOD + morph + output).
-Prints one JSON object.
+certificate: <= tau), the filter's median time per frame (CPU, LOD + morph + output) and,
+through vtkGeoMipMapMapper on the same flight (needs a display: xvfb-run), the median
+frame time (Render + glFinish), off and on alternating frame by frame. Prints one JSON
+object.
 """
 
 import json
@@ -128,6 +130,42 @@ def main(argv):
             "screen_error_max_px": max(errors),
             "filter_ms_median": statistics.median(times),
         }
+    # Frame time through the mapper (run under xvfb-run): the same flight, morphing off and
+    # on, alternating frame by frame so that both see the same machine load; Render +
+    # glFinish, median. --no-render skips it.
+    if "--no-render" not in argv:
+        from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
+        import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+        ms = {"off": [], "on": []}
+        rigs = {}
+        for mode in ("off", "on"):
+            mapper = geomipmap.vtkGeoMipMapMapper()
+            mapper.SetInputData(image)
+            mapper.SetBlockSize(block)
+            mapper.SetPixelError(tau)
+            mapper.SetGeomorphing(mode == "on")
+            actor = vtkActor()
+            actor.SetMapper(mapper)
+            ren = vtkRenderer()
+            ren.AddActor(actor)
+            win = vtkRenderWindow()
+            win.SetOffScreenRendering(1)
+            win.SetSize(w, h)
+            win.AddRenderer(ren)
+            rigs[mode] = (ren, win)
+        for f in range(frames):
+            for mode in ("off", "on"):
+                ren, win = rigs[mode]
+                ren.SetActiveCamera(camera(f))
+                t = time.perf_counter()
+                win.Render()
+                win.WaitForCompletion()
+                if f > 0:  # the first frame builds the textures
+                    ms[mode].append((time.perf_counter() - t) * 1000.0)
+        for mode in ("off", "on"):
+            out[mode]["mapper_frame_ms_median"] = statistics.median(ms[mode])
+        out["mapper_frame_time_ratio_on_over_off"] = (out["on"]["mapper_frame_ms_median"] /
+                                                      out["off"]["mapper_frame_ms_median"])
     out["pop_ratio_off_over_on"] = out["off"]["pop_max_px"] / max(out["on"]["pop_max_px"], 1e-12)
     out["filter_time_ratio_on_over_off"] = out["on"]["filter_ms_median"] / out["off"]["filter_ms_median"]
     print(json.dumps(out, indent=1))
