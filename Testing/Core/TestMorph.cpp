@@ -265,3 +265,50 @@ TEST(Morph, CertifiedWhileMorphing)
   EXPECT_GT(framesMoved, 100u); // the campaign really morphed
   EXPECT_GT(partial, 1000u);
 }
+
+// Holes and degenerate shapes: a DEM with nodata, one a single quad wide, and the smallest
+// DEM. Drawn vertices keep finite heights, blocks touching nodata do not morph, and the
+// morphed frame still measures within tau with every in-frustum sample covered.
+TEST(Morph, NodataAndThinDEMs)
+{
+  Rng rng(99);
+  std::vector<gmm::Heightfield> fields;
+  gmm::Heightfield holes = roughTerrain(120, 90, rng);
+  for (int j = 30; j < 45; ++j)
+    for (int i = 50; i < 70; ++i)
+      holes.z[holes.index(i, j)] = std::numeric_limits<float>::quiet_NaN();
+  holes.z[holes.index(5, 80)] = std::numeric_limits<float>::quiet_NaN();
+  fields.push_back(holes);
+  fields.push_back(roughTerrain(2, 200, rng));
+  fields.push_back(roughTerrain(150, 2, rng));
+  fields.push_back(roughTerrain(2, 2, rng));
+  for (const gmm::Heightfield& hf : fields)
+  {
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+    gmm::MorphCache cache;
+    for (int c = 0; c < 8; ++c)
+    {
+      const gmm::View v = randomCamera(rng, e.heightfield());
+      for (double tau : { 2.0, 8.0 })
+      {
+        e.update(v, tau);
+        ASSERT_EQ(e.lastError(), "");
+        gmm::MorphFrame f;
+        gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, f);
+        const std::vector<double> z = morphedHeights(e, f);
+        for (uint32_t k : e.indices())
+          ASSERT_TRUE(std::isfinite(z[k])) << hf.nx << "x" << hf.ny << " vertex " << k;
+        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, tau, MeasureTransform(), z.data());
+        EXPECT_EQ(m.violations, 0u) << hf.nx << "x" << hf.ny << ": " << m.first;
+        EXPECT_EQ(m.uncovered, 0u) << hf.nx << "x" << hf.ny << ": " << m.first;
+        const gmm::Quadtree& qt = e.quadtree();
+        for (int b = 0; b < qt.blockCount(); ++b)
+          if (qt.blockHasNodata[b])
+            EXPECT_EQ(f.blockT[b], 0.0f) << "block " << b << " has nodata";
+        if (::testing::Test::HasFailure())
+          return;
+      }
+    }
+  }
+}
