@@ -42,6 +42,7 @@
 #include "Morph.h"
 #include "RayCast.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>

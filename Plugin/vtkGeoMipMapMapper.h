@@ -36,6 +36,10 @@
  * (ColorMode default). Cell scalars are not supported (the surface takes the actor's
  * colour, with an error).
  *
+ * Geomorphing (SetGeomorphing, on by default): vertices glide toward a block's next coarser
+ * level as it nears its switch, in the vertex shader, from a small per-frame texture of
+ * per-block and per-edge factors; the morphed surface keeps the certified bound.
+ *
  * Draped imagery: SetDrapeImage lays a georeferenced image (an orthophoto brought into
  * the terrain's frame by vtkGeoMipMapImageDrape) over the terrain at its own resolution.
  *
