@@ -21,8 +21,10 @@
 #include "vtkTypeInt64Array.h"
 
 #include "Engine.h"
+#include "Morph.h"
 #include "RayCast.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -33,6 +35,8 @@ struct vtkGeoMipMapFilter::Internals
   gmm::Engine Engine;
   // The terrain the engine uses (shared with every other consumer of the input image).
   vtkSmartPointer<vtkGeoMipMapTerrain> Terrain;
+  gmm::MorphFrame Morph; // this frame's geomorph factors (all 0 when not morphing)
+  gmm::MorphCache MorphCache;
 };
 
 vtkStandardNewMacro(vtkGeoMipMapFilter);
@@ -121,6 +125,18 @@ int vtkGeoMipMapFilter::RequestData(
     }
     stats = &in.Engine.update(view, this->PixelError);
   }
+  // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.
+  const bool morph = this->Geomorphing && !(this->MaximumGeometricError > 0.0 || !this->Camera) &&
+    in.Engine.lastError().empty();
+  if (morph)
+  {
+    gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
+      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph);
+  }
+  else if (!in.Engine.empty())
+  {
+    gmm::clearMorph(in.Engine.quadtree(), in.Morph);
+  }
   if (!in.Engine.lastError().empty())
   {
     vtkErrorMacro("LOD update failed: " << in.Engine.lastError());
@@ -169,10 +185,12 @@ int vtkGeoMipMapFilter::RequestData(
   {
     const int i = static_cast<int>(used[p] % static_cast<uint32_t>(hf.nx));
     const int j = static_cast<int>(used[p] / static_cast<uint32_t>(hf.nx));
-    const float z = hf.heights()[used[p]];
+    const double z = morph
+      ? gmm::morphedHeight(hf, in.Engine.quadtree(), in.Engine.levels(), in.Morph, i, j)
+      : static_cast<double>(hf.heights()[used[p]]);
     xyz->SetTypedTuple(p,
       std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + this->HeightScale * z }.data());
-    elevation->SetValue(p, z);
+    elevation->SetValue(p, static_cast<float>(z));
     vtkGeoMipMapConversion::SampleNormal(hf, i, j, this->HeightScale, normals->GetPointer(3 * p));
   }
   vtkNew<vtkPoints> points;
@@ -200,7 +218,9 @@ int vtkGeoMipMapFilter::RequestData(
   output->GetFieldData()->AddArray(triCount);
   addInt("VisibleBlocks", stats->visibleBlocks);
   addInt("CulledBlocks", stats->culledBlocks);
-  addDouble("MaximumScreenSpaceError", stats->maxScreenError);
+  // The bound of what is output: the morphed surface's when morphing (still <= PixelError).
+  addDouble("MaximumScreenSpaceError",
+    morph ? std::max(stats->maxScreenError, in.Morph.maxBoundPixels) : stats->maxScreenError);
   addDouble("MaximumGeometricError", stats->maxGeometricError);
   return 1;
 }
@@ -267,5 +287,6 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
      << (this->TableCacheDirectory ? this->TableCacheDirectory : "(default)") << "\n";
   os << indent << "MaximumGeometricError: " << this->MaximumGeometricError << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
+  os << indent << "Geomorphing: " << this->Geomorphing << "\n";
   os << indent << "ModelMatrix: " << this->ModelMatrix << "\n";
 }

@@ -9,7 +9,9 @@
  * "Elevation" (h), point normals "Normals" (full-resolution central differences of the
  * scaled surface, the normals the mapper shades with), and field data with the frame's
  * statistics: Triangles, VisibleBlocks, CulledBlocks, MaximumScreenSpaceError,
- * MaximumGeometricError (data units). The quadtree and error tables are those of
+ * MaximumGeometricError (data units). With Geomorphing (default on) and a camera, the
+ * points carry the morphed heights the mapper's vertex shader draws for that camera
+ * ("Elevation" too), and MaximumScreenSpaceError is the morphed surface's bound. The quadtree and error tables are those of
  * vtkGeoMipMapTerrain: built once per input image and shared with every mapper of it.
  *
  * Modes:
@@ -126,6 +128,19 @@ public:
   vtkGetMacro(MaximumGeometricError, double);
   ///@}
 
+  ///@{
+  /**
+   * Geomorphing (default on, as vtkGeoMipMapMapper::SetGeomorphing): in view-dependent
+   * mode, vertices that a block's next coarser level drops are moved toward that level's
+   * surface by a per-block factor, so that level changes do not pop; the moved surface is
+   * still within PixelError (see Documentation/design.md, "Geomorphing"). Points keep
+   * their x, y; only heights move. Ignored in view-independent mode.
+   */
+  vtkSetMacro(Geomorphing, bool);
+  vtkGetMacro(Geomorphing, bool);
+  vtkBooleanMacro(Geomorphing, bool);
+  ///@}
+
   /**
    * Height of the full-resolution surface at data coordinates (x, y): origin z +
    * HeightScale * h, linear on the level-0 triangle under it (the triangulation the mesh
@@ -152,6 +167,7 @@ protected:
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;
   double MaximumGeometricError = 0.0;
+  bool Geomorphing = true;
 
 private:
   vtkGeoMipMapFilter(const vtkGeoMipMapFilter&) = delete;

@@ -21,6 +21,7 @@
 vtkStandardNewMacro(vtkGeoMipMapScreenError);
 vtkCxxSetObjectMacro(vtkGeoMipMapScreenError, Heightfield, vtkImageData);
 vtkCxxSetObjectMacro(vtkGeoMipMapScreenError, Mesh, vtkPolyData);
+vtkCxxSetObjectMacro(vtkGeoMipMapScreenError, ReferenceMesh, vtkPolyData);
 
 namespace
 {
@@ -109,6 +110,38 @@ void Rasterise(const double gx[3], const double gy[3], const double z[3], Window
     }
   }
 }
+
+// Rasterises every polygon of `mesh` (fanned into triangles) into the window; heights
+// relative to z0.
+void RasteriseMesh(vtkPolyData* mesh, const double* origin, const double* spacing, double z0, Window& w)
+{
+  vtkPoints* pts = mesh->GetPoints();
+  vtkCellArray* polys = mesh->GetPolys();
+  if (!pts || !polys)
+  {
+    return;
+  }
+  auto it = vtkSmartPointer<vtkCellArrayIterator>::Take(polys->NewIterator());
+  double p[3], gx[3], gy[3], gz[3];
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    for (vtkIdType t = 1; t + 1 < n; ++t)
+    {
+      const vtkIdType corner[3] = { ids[0], ids[t], ids[t + 1] };
+      for (int c = 0; c < 3; ++c)
+      {
+        pts->GetPoint(corner[c], p);
+        gx[c] = (p[0] - origin[0]) / spacing[0];
+        gy[c] = (p[1] - origin[1]) / spacing[1];
+        gz[c] = p[2] - z0;
+      }
+      Rasterise(gx, gy, gz, w);
+    }
+  }
+}
 }
 
 //------------------------------------------------------------------------------
@@ -122,6 +155,7 @@ vtkGeoMipMapScreenError::~vtkGeoMipMapScreenError()
 {
   this->SetHeightfield(nullptr);
   this->SetMesh(nullptr);
+  this->SetReferenceMesh(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -210,32 +244,15 @@ bool vtkGeoMipMapScreenError::Compute()
   w.Lo.assign(cells, std::numeric_limits<float>::quiet_NaN());
   w.Hi.assign(cells, std::numeric_limits<float>::quiet_NaN());
 
-  // Pass 2: rasterise the mesh over the grid (polygons fanned into triangles).
-  vtkPoints* pts = this->Mesh->GetPoints();
-  vtkCellArray* polys = this->Mesh->GetPolys();
-  if (pts && polys)
+  // Pass 2: rasterise the mesh over the grid (polygons fanned into triangles), and the
+  // reference mesh, if any, into a window of its own.
+  Window ref = w;
+  RasteriseMesh(this->Mesh, origin, spacing, z0, w);
+  if (this->ReferenceMesh)
   {
-    auto it = vtkSmartPointer<vtkCellArrayIterator>::Take(polys->NewIterator());
-    double p[3], gx[3], gy[3], gz[3];
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-    {
-      vtkIdType n;
-      const vtkIdType* ids;
-      it->GetCurrentCell(n, ids);
-      for (vtkIdType t = 1; t + 1 < n; ++t)
-      {
-        const vtkIdType corner[3] = { ids[0], ids[t], ids[t + 1] };
-        for (int c = 0; c < 3; ++c)
-        {
-          pts->GetPoint(corner[c], p);
-          gx[c] = (p[0] - origin[0]) / spacing[0];
-          gy[c] = (p[1] - origin[1]) / spacing[1];
-          gz[c] = p[2] - z0;
-        }
-        Rasterise(gx, gy, gz, w);
-      }
-    }
+    RasteriseMesh(this->ReferenceMesh, origin, spacing, z0, ref);
   }
+
 
   // Pass 3: pixel distance between the true and the drawn point, worst of lo / hi.
   std::vector<float> errors;
@@ -253,8 +270,13 @@ bool vtkGeoMipMapScreenError::Compute()
       }
       ++this->NumberOfSamplesInView;
       const std::size_t k = static_cast<std::size_t>(j - w.J0) * w.Width() + (i - w.I0);
-      double worst = -1.0;
       bool ok = !std::isnan(w.Lo[k]);
+      if (this->ReferenceMesh)
+      {
+        bool dummy;
+        ok = ok && !std::isnan(ref.Lo[k]) && project(sx(i), sy(j), z0 + ref.Lo[k], tx, ty, dummy);
+      }
+      double worst = -1.0;
       for (const float zd : { w.Lo[k], w.Hi[k] })
       {
         bool dummy;
@@ -287,6 +309,7 @@ void vtkGeoMipMapScreenError::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Heightfield: " << this->Heightfield << "\n";
   os << indent << "Mesh: " << this->Mesh << "\n";
+  os << indent << "ReferenceMesh: " << this->ReferenceMesh << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1] << "\n";
   os << indent << "MaximumError: " << this->MaximumError << "\n";

@@ -26,6 +26,13 @@
  *   ViewportSize (pixels). A sample is in view when its clip w > 0 and its normalised
  *   x, y, z lie in [-1, 1] (inside the six frustum planes).
  *
+ * With a ReferenceMesh, the reference point at a sample is that mesh's drawn point
+ * instead of the true one (the heightfield then only gives the grid and which samples are
+ * in view): the result is the screen displacement between two drawn surfaces, e.g. the
+ * popping between two frames of a flight (reference = the previous frame's mesh, Mesh =
+ * this frame's, matrix = this frame's camera). Samples that either mesh leaves uncovered
+ * count as uncovered.
+ *
  * The class takes a matrix rather than a vtkCamera so that this module does not depend
  * on VTK's rendering modules.
  */
@@ -73,6 +80,15 @@ public:
 
   ///@{
   /**
+   * Optional second drawn surface (same world coordinates) to measure Mesh against,
+   * instead of the heightfield's true surface. Default none.
+   */
+  virtual void SetReferenceMesh(vtkPolyData*);
+  vtkGetObjectMacro(ReferenceMesh, vtkPolyData);
+  ///@}
+
+  ///@{
+  /**
    * World -> clip matrix (a copy is kept) and viewport size in pixels (default 1280 x 720).
    */
   void SetProjectionMatrix(vtkMatrix4x4* m);
@@ -103,6 +119,7 @@ protected:
 
   vtkImageData* Heightfield = nullptr;
   vtkPolyData* Mesh = nullptr;
+  vtkPolyData* ReferenceMesh = nullptr;
   double Matrix[16];
   bool HasMatrix = false;
   int ViewportSize[2] = { 1280, 720 };

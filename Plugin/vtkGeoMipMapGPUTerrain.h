@@ -60,6 +60,7 @@ public:
 
   const vtkGeoMipMapShaders::Options& GetShading() const { return this->Shading; }
   void SetTextureCoordinates(bool on) { this->Shading.TextureCoordinates = on; }
+  void SetMorph(bool on) { this->Shading.Morph = on; }
   bool HasHeights() const { return this->Heights.HasData(); }
   size_t GetBytes() const;
 

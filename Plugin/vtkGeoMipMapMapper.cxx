@@ -4,6 +4,7 @@
 #include "vtkGeoMipMapShaders.h"
 #include "vtkGeoMipMapTerrain.h"
 #include "vtkGeoMipMapGPUTerrain.h"
+#include "vtkGeoMipMapMorphTexture.h"
 
 #include "vtkActor.h"
 #include "vtkCommand.h"
@@ -38,8 +39,10 @@
 #include "vtk_glew.h"
 
 #include "Engine.h"
+#include "Morph.h"
 #include "RayCast.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -68,6 +71,12 @@ struct vtkGeoMipMapMapper::Internals
   // GPU data, all in the context of Window.
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
   vtkGeoMipMapGPUTerrain GPU;
+  // Geomorphing: this frame's factors (Morph.h) and their texture; Morphing while drawn so.
+  gmm::MorphCache MorphCache;
+  gmm::MorphFrame Morph;
+  vtkGeoMipMapMorphTexture MorphTexture;
+  bool Morphing = false;
+  std::string ReportedMorphError;
   std::map<const vtkOpenGLHelper*, std::string> ShaderKeys; // per helper: key built for
   bool ReportedCellScalars = false;
 
@@ -173,6 +182,15 @@ void vtkGeoMipMapMapper::SetPixelError(double tau)
   }
 }
 
+void vtkGeoMipMapMapper::SetGeomorphing(bool on)
+{
+  if (on != this->Geomorphing)
+  {
+    this->Geomorphing = on;
+    this->ModifiedIndicesOnly();
+  }
+}
+
 void vtkGeoMipMapMapper::SetFreezeLevelOfDetail(bool freeze)
 {
   if (freeze != this->FreezeLevelOfDetail)
@@ -219,7 +237,11 @@ int vtkGeoMipMapMapper::GetNumberOfCulledBlocks() const
 }
 double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
 {
-  return this->LastFrameDrawn ? this->Internal->Engine.stats().maxScreenError : 0.0;
+  // While morphing, the bound of the morphed surface (Morph.h), still <= PixelError.
+  const Internals& in = *this->Internal;
+  return this->LastFrameDrawn
+    ? std::max(in.Engine.stats().maxScreenError, in.Morphing ? in.Morph.maxBoundPixels : 0.0)
+    : 0.0;
 }
 double vtkGeoMipMapMapper::GetMaximumGeometricError() const
 {
@@ -498,6 +520,27 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   in.GPU.SetTextureCoordinates(textured);
 
+  // Geomorph factors of this frame's selection (a frozen LOD keeps those of its own), then
+  // their texture: the only per-frame morph data. One that cannot be stored draws unmorphed.
+  in.Morphing = false;
+  if (this->Geomorphing)
+  {
+    const gmm::Quadtree& qt = in.Engine.quadtree();
+    if (!this->LastFrameFrozen || in.Morph.blockT.size() != static_cast<size_t>(qt.blockCount()))
+    {
+      gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(), this->PixelError,
+        in.MorphCache, in.Morph);
+    }
+    const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
+    in.Morphing = merr.empty();
+    if (!merr.empty() && merr != in.ReportedMorphError)
+    {
+      vtkWarningMacro(<< merr);
+    }
+    in.ReportedMorphError = merr;
+  }
+  in.GPU.SetMorph(in.Morphing);
+
   this->CurrentInput = in.Proxy;
   this->RenderPieceStart(ren, act); // may rebuild buffers, and then the IBO through BuildIBO
   if (this->IndicesDirty)
@@ -699,6 +742,10 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     return;
   }
   in.GPU.Bind();
+  if (in.Morphing)
+  {
+    in.MorphTexture.Activate();
+  }
 
   const int representation = act->GetProperty()->GetRepresentation();
   this->DrawingVertices = false;
@@ -725,6 +772,10 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   }
   tris.IBO->Release();
+  if (in.Morphing)
+  {
+    in.MorphTexture.Deactivate();
+  }
   in.GPU.Unbind();
 }
 
@@ -758,6 +809,10 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
   vtkShaderProgram* p = cellBO.Program;
   in.GPU.SetUniforms(
     p, in.Engine.heightfield(), this->HeightScale, in.AnchorI, in.AnchorJ, in.HeightRef);
+  if (in.Morphing)
+  {
+    in.MorphTexture.SetUniforms(p);
+  }
 
   // Clipping planes in model coordinates, which are relative to the anchor.
   if (this->GetNumberOfClippingPlanes() && p->IsUniformUsed("clipPlanes"))
@@ -828,12 +883,14 @@ void vtkGeoMipMapMapper::ReleaseWindowResources()
     // Never drawn, or the window (its context, with everything in it) is gone without
     // telling us: forget the handles rather than use them in another context.
     in.GPU.Forget();
+    in.MorphTexture.Forget();
     this->VBOBuildState.Clear();
     this->IBOBuildState.Clear();
     return;
   }
   win->PushContext();
   in.GPU.Release(win);
+  in.MorphTexture.Release(win);
   // What vtkOpenGLPolyDataMapper::ReleaseGraphicsResources frees, which it only does
   // through its unregistered callback (see RenderPiece).
   this->VBOs->ReleaseGraphicsResources(win);
@@ -891,6 +948,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
+  os << indent << "Geomorphing: " << this->Geomorphing << "\n";
   os << indent << "DrapeImage: " << this->Internal->Drape.GetPointer() << "\n";
   os << indent << "NumberOfRenderedTriangles: " << this->GetNumberOfRenderedTriangles() << "\n";
   os << indent << "NumberOfVisibleBlocks: " << this->GetNumberOfVisibleBlocks() << "\n";

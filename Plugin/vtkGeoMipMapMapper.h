@@ -36,6 +36,10 @@
  * (ColorMode default). Cell scalars are not supported (the surface takes the actor's
  * colour, with an error).
  *
+ * Geomorphing (SetGeomorphing, on by default): vertices glide toward a block's next coarser
+ * level as it nears its switch, in the vertex shader, from a small per-frame texture of
+ * per-block and per-edge factors; the morphed surface keeps the certified bound.
+ *
  * Draped imagery: SetDrapeImage lays a georeferenced image (an orthophoto brought into
  * the terrain's frame by vtkGeoMipMapImageDrape) over the terrain at its own resolution.
  *
@@ -187,6 +191,22 @@ public:
 
   ///@{
   /**
+   * Geomorphing (on by default): the vertex shader moves each vertex that a block's next
+   * coarser level drops toward that level's surface, by a per-block factor that grows as
+   * the block nears its switch, so that level changes do not pop; vertices on a shared
+   * edge follow one per-edge factor, so no crack opens. The factors keep the certificate:
+   * the morphed surface is within PixelError (MaximumScreenSpaceError is then its bound).
+   * Only heights move (x, y stay), so draped images and shading do not swim. Per frame a
+   * few bytes per block are uploaded; nothing per vertex. vtkGeoMipMapFilter with the same
+   * setting outputs the same positions. See Documentation/design.md, "Geomorphing".
+   */
+  void SetGeomorphing(bool on);
+  vtkGetMacro(Geomorphing, bool);
+  vtkBooleanMacro(Geomorphing, bool);
+  ///@}
+
+  ///@{
+  /**
    * Statistics of the last rendered frame (the last renderer that drew this mapper).
    * LastUpdateTime is the LOD work (cull, select, tessellate) in seconds;
    * MaximumScreenSpaceError is the engine's certified bound in pixels and
@@ -327,6 +347,7 @@ protected:
   bool LastTablesFromCache = false;
   bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
   bool FreezeLevelOfDetail = false;
+  bool Geomorphing = true;
   bool LastFrameFrozen = false; // the last RenderPiece kept the frozen selection
   vtkMTimeType IndicesOnlyMTime = 0;
   bool IndicesDirty = true;

@@ -98,6 +98,80 @@ const char* const kDrape =
   "uniform vec4 gmmDrapeMap; // st = grid position * xy + zw\n"
   "vec4 gmmDrapeColor() { return texture(gmmDrape, gmmGridVSOutput * gmmDrapeMap.xy + gmmDrapeMap.zw); }\n";
 
+// Geomorphing in the vertex shader, mirroring gmm::morphedHeight (Morph.cpp) line by line:
+// the block of sample (i, j) by binary search over the band starts, then the edge or the
+// block it lies on, its target level and factor, and the target: the edge polyline at that
+// level, or the block's cell at that level split as Tessellate splits it.
+const char* const kMorph =
+  "uniform highp sampler2D gmmMorph;\n"
+  "uniform ivec2 gmmMorphLayout; // block columns, rows\n"
+  "vec2 gmmMorphAt(int x, int y) { return texelFetch(gmmMorph, ivec2(x, y), 0).rg; }\n"
+  "int gmmStart(int row, int k) { return int(texelFetch(gmmMorph, ivec2(k, row), 0).r); }\n"
+  "int gmmBand(int row, int bands, int s)\n"
+  "{\n"
+  "  int lo = 0, hi = bands - 1;\n"
+  "  while (lo < hi) { int mid = (lo + hi + 1) >> 1; if (gmmStart(row, mid) <= s) lo = mid; else hi = mid - 1; }\n"
+  "  return lo;\n"
+  "}\n"
+  "float gmmLerp(float a, float b, float w) { return a + w * (b - a); }\n"
+  "float gmmPolyline(int first, int last, int level, int s, ivec2 fixedAxis, bool alongI)\n"
+  "{\n"
+  "  int step = 1 << level;\n"
+  "  int lo = first + ((s - first) >> level) * step;\n"
+  "  ivec2 a = alongI ? ivec2(lo, fixedAxis.y) : ivec2(fixedAxis.x, lo);\n"
+  "  if (lo == s) { return gmmHeight(a); }\n"
+  "  int hi = min(lo + step, last);\n"
+  "  ivec2 b = alongI ? ivec2(hi, fixedAxis.y) : ivec2(fixedAxis.x, hi);\n"
+  "  return gmmLerp(gmmHeight(a), gmmHeight(b), float(s - lo) / float(hi - lo));\n"
+  "}\n"
+  "float gmmBlockSurface(ivec2 ij, int i0, int i1, int j0, int j1, int level)\n"
+  "{\n"
+  "  int step = 1 << level;\n"
+  "  int u = (ij.x - i0) >> level, v = (ij.y - j0) >> level;\n"
+  "  int ia = i0 + u * step, ja = j0 + v * step;\n"
+  "  int ib = min(ia + step, i1), jb = min(ja + step, j1);\n"
+  "  int k = (i1 - i0 + step - 1) >> level, L = (j1 - j0 + step - 1) >> level;\n"
+  "  bool ring = step < i1 - i0 && step < j1 - j0;\n"
+  "  bool anti = ring && ((u == k - 1 && v == 0) || (u == 0 && v == L - 1));\n"
+  "  float fx = float(ij.x - ia) / float(ib - ia), fy = float(ij.y - ja) / float(jb - ja);\n"
+  "  float h00 = gmmHeight(ivec2(ia, ja)), h10 = gmmHeight(ivec2(ib, ja));\n"
+  "  float h01 = gmmHeight(ivec2(ia, jb)), h11 = gmmHeight(ivec2(ib, jb));\n"
+  "  if (!anti)\n"
+  "    return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);\n"
+  "  return fx + fy <= 1.0 ? h00 + fx * (h10 - h00) + fy * (h01 - h00)\n"
+  "                        : h11 + (1.0 - fx) * (h01 - h11) + (1.0 - fy) * (h10 - h11);\n"
+  "}\n"
+  "float gmmMorphHeight(ivec2 ij, float h)\n"
+  "{\n"
+  "  int bc = gmmMorphLayout.x, br = gmmMorphLayout.y;\n"
+  "  int c = gmmBand(3 * br + 1, bc, ij.x), r = gmmBand(3 * br + 2, br, ij.y);\n"
+  "  int i0 = gmmStart(3 * br + 1, c), i1 = gmmStart(3 * br + 1, c + 1);\n"
+  "  int j0 = gmmStart(3 * br + 2, r), j1 = gmmStart(3 * br + 2, r + 1);\n"
+  "  bool onV = ij.x == i0 || ij.x == i1, onH = ij.y == j0 || ij.y == j1;\n"
+  "  if (onV && onH) { return h; }\n"
+  "  vec2 d;\n"
+  "  float target;\n"
+  "  if (onV)\n"
+  "  {\n"
+  "    d = gmmMorphAt(ij.x == i0 ? c : c + 1, br + r);\n"
+  "    if (!(d.y > 0.0)) { return h; }\n"
+  "    target = gmmPolyline(j0, j1, int(d.x), ij.y, ij, false);\n"
+  "  }\n"
+  "  else if (onH)\n"
+  "  {\n"
+  "    d = gmmMorphAt(c, 2 * br + (ij.y == j0 ? r : r + 1));\n"
+  "    if (!(d.y > 0.0)) { return h; }\n"
+  "    target = gmmPolyline(i0, i1, int(d.x), ij.x, ij, true);\n"
+  "  }\n"
+  "  else\n"
+  "  {\n"
+  "    d = gmmMorphAt(c, r);\n"
+  "    if (!(d.y > 0.0)) { return h; }\n"
+  "    target = gmmBlockSurface(ij, i0, i1, j0, j1, int(d.x));\n"
+  "  }\n"
+  "  return abs(target) <= 1.0e38 ? h + d.y * (target - h) : h;\n"
+  "}\n";
+
 // Lookup-table colours: texel 0 below range, 1..n the bins, n + 1 above, n + 2 NaN.
 std::string ColorTable(const vtkGeoMipMapShaders::Options& o)
 {
@@ -161,7 +235,7 @@ std::string Options::Key() const
 {
   return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
     (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n") +
-    (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-");
+    (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-") + (this->Morph ? "m" : "-");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
@@ -201,7 +275,8 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
       "uniform float gmmInvGridX;    // 1 / nx\n"
       "uniform float gmmHeightRef;   // stored height at the model-coordinate origin\n"
       "out vec2 gmmGridVSOutput;\n" +
-      (o.Color == Options::MapHeights ? "out float gmmHeightVSOutput;\n" : ""));
+      (o.Color == Options::MapHeights ? "out float gmmHeightVSOutput;\n" : "") +
+      (o.Morph ? kMorph : ""));
   // Sample (i, j) of vertex id j * nx + i without an integer division (scalarised, hence
   // slow, on software rasterisers): a float estimate of j (relative error 2^-24), refined
   // once from its remainder (now small enough to be exact in float), then corrected by one;
@@ -215,8 +290,9 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
                       "  if (gmmI < 0) { gmmJ -= 1; gmmI += gmmGridSize.x; }\n"
                       "  else if (gmmI >= gmmGridSize.x) { gmmJ += 1; gmmI -= gmmGridSize.x; }\n"
                       "  ivec2 gmmIJ = ivec2(gmmI, gmmJ);\n"
-                      "  float gmmH = gmmHeight(gmmIJ);\n"
-                      "  vertexMC = vec4(vec2(gmmIJ - gmmAnchor) * gmmSpacing,\n"
+                      "  float gmmH = gmmHeight(gmmIJ);\n" +
+    std::string(o.Morph ? "  gmmH = gmmMorphHeight(gmmIJ, gmmH);\n" : "") +
+    "  vertexMC = vec4(vec2(gmmIJ - gmmAnchor) * gmmSpacing,\n"
                       "    (gmmH - gmmHeightRef) * gmmHeightScale, 1.0);\n"
                       "  gmmGridVSOutput = vec2(gmmIJ);\n";
   if (o.Color == Options::MapHeights)

@@ -92,6 +92,9 @@ public:
   // renderer mirrors in an index buffer and updates incrementally (IndexArena.h).
   const IndexArena& indexArena() const { return arena_; }
   const std::vector<int8_t>& levels() const { return levels_; }
+  // Pixels per unit of stored-height error of each block this frame (0 for blocks not in
+  // view; stale after a failed or view-independent update): what computeMorph (Morph.h) needs.
+  const std::vector<double>& pixelFactors() const { return factor_; }
   const FrameStats& stats() const { return stats_; }
   const std::string& lastError() const { return lastError_; }
   const Heightfield& heightfield() const { return terrain_->hf; }

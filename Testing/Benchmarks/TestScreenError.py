@@ -97,6 +97,34 @@ ok, e = measure(grid(z), half)
 check("hole uncovered", e.GetNumberOfUncoveredSamples(), 10, 0)
 check("hole max", e.GetMaximumError(), EXPECTED, 1e-4)
 
+# ReferenceMesh (the popping measure): the full-resolution mesh of z as the reference and
+# the plane as the mesh, over a flat heightfield (which then only gives the grid): the same
+# 1.568627 px at the raised sample. Swapping the two meshes projects the other way round:
+# drawn 2.5 (1 / 7.5) against reference 1.5 (1 / 8.5), the same distance. Over the
+# half-plane mesh, the 10 samples it leaves uncovered are uncovered here too.
+full = mesh([(i, j, z[j, i]) for j in range(5) for i in range(5)],
+            [t for j in range(4) for i in range(4)
+             for t in (((j * 5 + i), (j * 5 + i + 1), ((j + 1) * 5 + i + 1)),
+                       ((j * 5 + i), ((j + 1) * 5 + i + 1), ((j + 1) * 5 + i)))])
+for what, drawn, ref, uncovered in (("reference", plane, full, 0), ("swapped", full, plane, 0),
+                                     ("reference, half mesh", half, full, 10)):
+    cam = vtkCamera()
+    cam.SetPosition(2, 2, 10)
+    cam.SetFocalPoint(2, 2, 0)
+    cam.SetViewUp(0, 1, 0)
+    cam.SetViewAngle(90)
+    cam.SetClippingRange(1, 100)
+    e = geomipmap.vtkGeoMipMapScreenError()
+    e.SetHeightfield(grid(np.zeros((5, 5))))
+    e.SetMesh(drawn)
+    e.SetReferenceMesh(ref)
+    e.SetViewportSize(200, 200)
+    e.SetProjectionMatrix(cam.GetCompositeProjectionTransformMatrix(1.0, -1, 1))
+    check(what + " Compute", e.Compute(), True, 0)
+    check(what + " max", e.GetMaximumError(), EXPECTED, 1e-4)
+    check(what + " in view", e.GetNumberOfSamplesInView(), 25, 0)
+    check(what + " uncovered", e.GetNumberOfUncoveredSamples(), uncovered, 0)
+
 # Bad input: no mesh -> False with an error event, results zero.
 errors = []
 bad = geomipmap.vtkGeoMipMapScreenError()

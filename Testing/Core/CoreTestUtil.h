@@ -422,7 +422,10 @@ struct SurfaceSample
   double maxDisagreement = 0.0; // between triangles sharing a sample (edges/vertices)
 };
 
-inline SurfaceSample sampleSurface(const gmm::Heightfield& hf, const std::vector<uint32_t>& idx)
+// `drawnZ` (one height per sample, optional): the heights the mesh's vertices are drawn
+// at when they are not the samples' own (a geomorphed frame).
+inline SurfaceSample sampleSurface(const gmm::Heightfield& hf, const std::vector<uint32_t>& idx,
+  const double* drawnZ = nullptr)
 {
   SurfaceSample s;
   const int nx = hf.nx;
@@ -436,7 +439,7 @@ inline SurfaceSample sampleSurface(const gmm::Heightfield& hf, const std::vector
     {
       I[k] = idx[t + k] % nx;
       J[k] = idx[t + k] / nx;
-      Z[k] = static_cast<double>(hf.z[idx[t + k]]);
+      Z[k] = drawnZ ? drawnZ[idx[t + k]] : static_cast<double>(hf.z[idx[t + k]]);
     }
     long long area = cross2(I[1] - I[0], J[1] - J[0], I[2] - I[0], J[2] - J[0]);
     if (area == 0)
@@ -586,10 +589,10 @@ struct MeasureTransform
 
 inline ScreenMeasure measureScreenError(const gmm::Heightfield& hf,
   const std::vector<uint32_t>& indices, const gmm::View* view, double tau,
-  const MeasureTransform& toWorld = MeasureTransform())
+  const MeasureTransform& toWorld = MeasureTransform(), const double* drawnZ = nullptr)
 {
   ScreenMeasure m;
-  const SurfaceSample surf = sampleSurface(hf, indices);
+  const SurfaceSample surf = sampleSurface(hf, indices, drawnZ);
   MyCamera cam{};
   if (view)
     cam = makeCamera(*view);

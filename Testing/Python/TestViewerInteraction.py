@@ -17,7 +17,7 @@ over the synthetic terrain, 513^2 at 640 x 360:
 - 'f': fly mode: Up moves along the view direction, a drag turns the view by 0.2 degrees a
   pixel with the eye fixed, Page Down stops at the clearance above the ground; 'f' again:
   orbit about the terrain point in the middle of the view;
-- 'g' (geomorphing) says it is not implemented and changes nothing; 'h' shows every key,
+- 'g' toggles geomorphing (the mapper's Geomorphing, on at start); 'h' shows every key,
   and Documentation/user-guide.md's key table lists every one;
 - looking away from the terrain (VTK then skips the mapper), the overlay says so and shows
   no stale figures;
@@ -216,12 +216,14 @@ check(v.mode == "orbit" and v.interactor.GetInteractorStyle() is v.orbit_style
       and abs(fz - mapper.GetHeightAt(fx, fy)) < 1e-3,
       f"'f' again: orbit about the ground point in view ({fz - mapper.GetHeightAt(fx, fy):.2e})")
 
-# --- Geomorphing: reserved --------------------------------------------------------------
-before = (mapper.GetMTime(), v.actor.GetMTime(), mapper.GetPixelError())
+# --- Geomorphing: 'g' toggles the mapper's Geomorphing (on at start) ---------------------
+check(mapper.GetGeomorphing(), "geomorphing is on at start")
+tau_before = mapper.GetPixelError()
 play(key("g"))
-check("not implemented" in v.message and
-      (mapper.GetMTime(), v.actor.GetMTime(), mapper.GetPixelError()) == before,
-      f"'g': {v.message!r}, nothing changed")
+check(not mapper.GetGeomorphing() and "geomorphing off" in v.message
+      and mapper.GetPixelError() == tau_before, f"'g': off ({v.message!r})")
+play(key("g"))
+check(mapper.GetGeomorphing() and "geomorphing on" in v.message, f"'g' again: on ({v.message!r})")
 play(key("h"))
 check(all(doc in v.overlay.status.GetInput() for _, _, doc in viewer_module.KEYS),
       "'h': the help lists every key")

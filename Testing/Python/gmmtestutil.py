@@ -84,9 +84,11 @@ class Measured:
                                   self.uncovered))
 
 
-def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0):
+def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0,
+             geomorphing=True):
     """vtkGeoMipMapFilter's triangles for this camera, viewport size (w, h), tau, block
-    size, actor matrix (None: identity) and height scale: what the mapper draws with them."""
+    size, actor matrix (None: identity), height scale and geomorphing: what the mapper draws
+    with them."""
     import geomipmap
 
     filt = geomipmap.vtkGeoMipMapFilter()
@@ -97,6 +99,7 @@ def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0
     filt.SetPixelError(tau)
     filt.SetBlockSize(block_size)
     filt.SetHeightScale(height_scale)
+    filt.SetGeomorphing(geomorphing)
     filt.Update()
     return filt.GetOutput()
 
@@ -111,7 +114,8 @@ def measure_drawn(image, ren, actor, tau, block_size):
     matrix = None if actor.GetIsIdentity() else matrix
     w, h = ren.GetSize()
     height_scale = actor.GetMapper().GetHeightScale()
-    mesh = lod_mesh(image, ren.GetActiveCamera(), (w, h), tau, block_size, matrix, height_scale)
+    mesh = lod_mesh(image, ren.GetActiveCamera(), (w, h), tau, block_size, matrix, height_scale,
+                    actor.GetMapper().GetGeomorphing())
     clip = vtkMatrix4x4()
     clip.DeepCopy(ren.GetActiveCamera().GetCompositeProjectionTransformMatrix(
         ren.GetTiledAspectRatio(), -1, 1))

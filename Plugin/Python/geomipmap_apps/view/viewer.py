@@ -35,7 +35,7 @@ KEYS = (
     (("w", "W"), "wireframe", "w  wireframe on / off"),
     (("l", "L"), "freeze", "l  freeze the LOD on / off (inspect it from elsewhere)"),
     (("f", "F"), "mode_switch", "f  fly mode / orbit mode"),
-    (("g", "G"), "geomorph", "g  geomorphing (reserved: not implemented yet)"),
+    (("g", "G"), "geomorph", "g  geomorphing on / off (smooth level changes)"),
     (("s", "S"), "screenshot", "s  save a screenshot (PNG, the window's size)"),
     (("r", "R"), "reset", "r  reset the camera"),
     (("o", "O"), "overlay_toggle", "o  overlay on / off"),
@@ -365,8 +365,9 @@ class Viewer:
             self._status(ORBIT_HELP, render=True)
 
     def geomorph(self):
-        self._status("g: geomorphing is not implemented yet (the key is reserved for it)",
-                     render=True)
+        self.mapper.SetGeomorphing(not self.mapper.GetGeomorphing())
+        self._status("geomorphing on: levels change smoothly" if self.mapper.GetGeomorphing()
+                     else "geomorphing off: levels switch at once", render=True)
 
     def screenshot(self):
         """Writes the current frame, overlay included, at the window's size; returns the

@@ -1,0 +1,374 @@
+#include "Morph.h"
+
+#include "Levels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gmm
+{
+
+namespace
+{
+
+// Band index of sample s in band starts `start` (size bands + 1): the band whose first
+// sample is the largest start <= s (the last band for the very last sample).
+int bandOf(const std::vector<int>& start, int s)
+{
+  const int bands = static_cast<int>(start.size()) - 1;
+  const int k = static_cast<int>(std::upper_bound(start.begin(), start.end(), s) - start.begin()) - 1;
+  return std::min(std::max(k, 0), bands - 1);
+}
+
+// Height of the polyline through the samples of [first, last] at `level` (edgeSamples), at
+// sample s on that line; `at(k)` gives the height of sample k along the line.
+template <typename At>
+double polylineAt(int first, int last, int level, int s, At at)
+{
+  const long long step = 1LL << level;
+  const long long lo = first + (s - first) / step * step;
+  if (lo == s)
+  {
+    return at(s);
+  }
+  const long long hi = std::min<long long>(lo + step, last);
+  const double w = static_cast<double>(s - lo) / static_cast<double>(hi - lo);
+  const double a = at(static_cast<int>(lo)), b = at(static_cast<int>(hi));
+  return a + w * (b - a);
+}
+
+// Height of block rectangle [i0, i1] x [j0, j1] drawn at `level` with its own edges, at
+// the interior sample (i, j): the cell of the grid edgeSamples(level) x edgeSamples(level)
+// that holds it, split as Tessellate splits it (see Morph.h).
+double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int level, int i, int j)
+{
+  const long long step = 1LL << level;
+  const long long u = (i - i0) / step, v = (j - j0) / step;
+  const long long ia = i0 + u * step, ja = j0 + v * step;
+  const long long ib = std::min<long long>(ia + step, i1), jb = std::min<long long>(ja + step, j1);
+  const long long k = (i1 - i0 + step - 1) / step, L = (j1 - j0 + step - 1) / step; // cells per side
+  const bool ring = blockShape(i1 - i0, j1 - j0, level) == BlockShape::Ring;
+  const bool anti = ring && ((u == k - 1 && v == 0) || (u == 0 && v == L - 1));
+  const double fx = static_cast<double>(i - ia) / static_cast<double>(ib - ia);
+  const double fy = static_cast<double>(j - ja) / static_cast<double>(jb - ja);
+  const double h00 = hf.height(int(ia), int(ja)), h10 = hf.height(int(ib), int(ja));
+  const double h01 = hf.height(int(ia), int(jb)), h11 = hf.height(int(ib), int(jb));
+  if (!anti)
+  {
+    // diagonal (ia, ja)-(ib, jb)
+    return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
+  }
+  // diagonal (ib, ja)-(ia, jb)
+  return fx + fy <= 1.0 ? h00 + fx * (h10 - h00) + fy * (h01 - h00)
+                        : h11 + (1.0 - fx) * (h01 - h11) + (1.0 - fy) * (h10 - h11);
+}
+
+double clamp01(double t)
+{
+  return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; // NaN -> 0
+}
+
+// Factors are stored as float (what the shader reads): rounded down, never above the
+// factor the certificate allows.
+float factorDown(double t)
+{
+  float f = static_cast<float>(clamp01(t));
+  if (static_cast<double>(f) > t)
+  {
+    f = std::nextafter(f, 0.0f);
+  }
+  return f;
+}
+
+// Largest x in [0, 1] with a + x (b - a) <= limit, given a <= limit (the linear bound at 0
+// holds): how far a linear bound may be pushed.
+double linearReach(double a, double b, double limit)
+{
+  if (b <= limit)
+  {
+    return 1.0;
+  }
+  return b > a ? clamp01((limit - a) / (b - a)) : 0.0;
+}
+
+// Largest t in [0, 1] with stripBound(e, t, t) <= limit on all of [0, t] (it holds at 0).
+// Along the diagonal the bound is a parabola q; [0, t] is within limit when q(t) is and
+// so is q's maximum if it lies inside, a property of prefixes: bisection finds the end.
+double diagonalReach(const double e[4], double limit)
+{
+  const double c = e[0], b = e[1] + e[2] - 2.0 * e[0], a = e[0] - e[1] - e[2] + e[3];
+  auto q = [&](double t) { return c + t * (b + t * a); };
+  const double vertex = a < 0.0 ? -b / (2.0 * a) : -1.0;
+  auto ok = [&](double t) { return q(t) <= limit && !(vertex > 0.0 && vertex < t && q(vertex) > limit); };
+  if (ok(1.0))
+  {
+    return 1.0;
+  }
+  double lo = 0.0, hi = 1.0;
+  for (int k = 0; k < 50; ++k)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (ok(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// The four edges of block (c, r) in a frame: South, East, North, West (Tessellate's Side).
+std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int c, int r)
+{
+  const int bc = qt.blockCols;
+  return { &f.hEdges[static_cast<std::size_t>(r) * bc + c],
+    &f.vEdges[static_cast<std::size_t>(r) * (bc + 1) + c + 1],
+    &f.hEdges[static_cast<std::size_t>(r + 1) * bc + c],
+    &f.vEdges[static_cast<std::size_t>(r) * (bc + 1) + c] };
+}
+} // namespace
+
+int nextValidLevel(int widthQuads, int heightQuads, int m)
+{
+  const int top = topLevel(widthQuads, heightQuads);
+  for (int n = m + 1; n <= top; ++n)
+  {
+    if (blockShape(widthQuads, heightQuads, n) != BlockShape::Invalid)
+    {
+      return n;
+    }
+  }
+  return -1;
+}
+
+void clearMorph(const Quadtree& qt, MorphFrame& out)
+{
+  out.blockT.assign(qt.blockCount(), 0.0f);
+  out.blockTarget.assign(qt.blockCount(), -1);
+  out.vEdges.assign(static_cast<std::size_t>(qt.blockCols + 1) * qt.blockRows, MorphEdge());
+  out.hEdges.assign(static_cast<std::size_t>(qt.blockCols) * (qt.blockRows + 1), MorphEdge());
+  out.maxBoundPixels = 0.0;
+}
+
+void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out)
+{
+  clearMorph(qt, out);
+  const int blocks = qt.blockCount();
+  if (cache.heights != hf.heights() || static_cast<int>(cache.key.size()) != blocks)
+  {
+    cache.key.assign(blocks, std::array<int8_t, 10>{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 });
+    cache.errors.assign(blocks, PartErrors());
+    cache.heights = hf.heights();
+  }
+  auto budget = [&](int b) {
+    const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
+    return std::isfinite(f) && f > 0.0 ? tau / f : -1.0; // -1: does not morph
+  };
+
+  // Edge levels and targets: an edge takes the level of the coarser block (Tessellate) and
+  // moves toward the next level of the block(s) that set it.
+  for (int b = 0; b < blocks; ++b)
+  {
+    const int m = levels[b];
+    const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+    if (m >= 0 && blockShape(w, h, m) == BlockShape::Ring)
+    {
+      out.blockTarget[b] = static_cast<int8_t>(nextValidLevel(w, h, m));
+    }
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0)
+    {
+      continue;
+    }
+    // The edge level as Tessellate draws it: the coarser of two drawn blocks (both sides
+    // agree), the block's top level beside a merged node (corners only: nothing on the
+    // edge moves, and the node's fan keeps its perimeter still).
+    const BlockConfig cfg = blockConfigOf(qt, levels, b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (int side = 0; side < 4; ++side)
+    {
+      edges[side]->level = static_cast<int8_t>(std::max<int>(edges[side]->level, cfg.edgeLevel[side]));
+    }
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0 || out.blockTarget[b] < 0)
+    {
+      continue;
+    }
+    for (MorphEdge* e : edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols))
+    {
+      if (e->level == levels[b])
+      {
+        e->target = e->target < 0 ? out.blockTarget[b] : std::min(e->target, out.blockTarget[b]);
+      }
+    }
+  }
+
+  // Block factors: the inner grid, and the strips whose edge the block sets moving with it
+  // (and with the edge held, so that any lower edge factor stays certified too).
+  std::vector<const PartErrors*> parts(blocks, nullptr);
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0 || out.blockTarget[b] < 0 || budget(b) < 0.0)
+    {
+      continue;
+    }
+    const int c = b % qt.blockCols, r = b / qt.blockCols;
+    const BlockConfig cfg = blockConfigOf(qt, levels, b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, c, r);
+    std::array<int8_t, 10> key{ static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
+      static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
+      static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
+      edges[2]->target, edges[3]->target };
+    if (key != cache.key[b])
+    {
+      const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
+      cache.errors[b] = morphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, cache.scratch);
+      cache.key[b] = key;
+    }
+    const PartErrors& pe = cache.errors[b];
+    parts[b] = &pe;
+    const double x = budget(b);
+    double t = pe.innerFrozen ? 0.0 : linearReach(pe.inner[0], pe.inner[1], x);
+    for (int side = 0; side < 4; ++side)
+    {
+      const double* e = pe.side[side];
+      if (pe.sideFrozen[side])
+      {
+        t = 0.0;
+        continue;
+      }
+      t = std::min(t, linearReach(e[0], e[1], x)); // edge held (e = 0)
+      if (edges[side]->level == cfg.level && edges[side]->target >= 0)
+      {
+        t = std::min(t, diagonalReach(e, x)); // edge moving with the block
+      }
+    }
+    out.blockT[b] = factorDown(t);
+  }
+
+  // Edge factors: the largest factor of the blocks setting the edge, lowered until both
+  // sides' strips fit their budgets with their blocks' factors.
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0)
+    {
+      continue;
+    }
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (MorphEdge* e : edges)
+    {
+      if (e->target >= 0 && e->level == levels[b])
+      {
+        e->t = std::max(e->t, out.blockT[b]); // owner factor, lowered below
+      }
+    }
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (levels[b] < 0)
+    {
+      continue;
+    }
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (int side = 0; side < 4; ++side)
+    {
+      MorphEdge& e = *edges[side];
+      if (e.t <= 0.0f)
+      {
+        continue;
+      }
+      const PartErrors* pe = parts[b];
+      if (!pe || pe->sideFrozen[side])
+      {
+        e.t = 0.0f; // a block that does not morph holds its edges
+        continue;
+      }
+      const double tb = out.blockT[b];
+      const double* q = pe->side[side];
+      const double at0 = stripBound(q, 0.0, tb), at1 = stripBound(q, 1.0, tb);
+      e.t = std::min(e.t, factorDown(linearReach(at0, at1, budget(b))));
+    }
+  }
+
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (!parts[b])
+    {
+      continue;
+    }
+    const PartErrors& pe = *parts[b];
+    const double tb = out.blockT[b];
+    double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    for (int side = 0; side < 4; ++side)
+    {
+      bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));
+    }
+    out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
+  }
+}
+
+double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
+  const std::array<int, 4>& edgeTarget, int i, int j)
+{
+  const double h = hf.height(i, j);
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
+  if (onV && onH)
+  {
+    return h; // block corner: on every level
+  }
+  if (onV || onH)
+  {
+    const int side = onH ? (j == j0 ? South : North) : (i == i0 ? West : East);
+    if (edgeTarget[side] < 0)
+    {
+      return h;
+    }
+    if (onH)
+    {
+      return polylineAt(i0, i1, edgeTarget[side], i, [&hf, j](int s) { return double(hf.height(s, j)); });
+    }
+    return polylineAt(j0, j1, edgeTarget[side], j, [&hf, i](int s) { return double(hf.height(i, s)); });
+  }
+  return target < 0 ? h : blockSurfaceAt(hf, i0, i1, j0, j1, target, i, j);
+}
+
+double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j, double* factorOut)
+{
+  const int c = bandOf(qt.colStart, i), r = bandOf(qt.rowStart, j);
+  const int b = qt.blockIndex(c, r);
+  const std::array<MorphEdge*, 4> edges = edgesOf(qt, const_cast<MorphFrame&>(frame), c, r);
+  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
+  *factorOut = 0.0;
+  if (onV != onH) // on one edge (corners never move)
+  {
+    const MorphEdge& e = *edges[onH ? (j == j0 ? South : North) : (i == i0 ? West : East)];
+    *factorOut = e.t;
+  }
+  else if (!onV && levels[b] >= 0)
+  {
+    *factorOut = frame.blockT[b];
+  }
+  const bool interior = !onV && !onH;
+  const int target = interior && levels[b] >= 0 ? frame.blockTarget[b] : -1;
+  return blockVertexTarget(hf, qt, b, target,
+    { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, i, j);
+}
+
+double morphedHeight(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j)
+{
+  double t = 0.0;
+  const double c = morphTarget(hf, qt, levels, frame, i, j, &t);
+  const double h = hf.height(i, j);
+  // t == 0 must give h exactly, even where the target is nodata (NaN).
+  return t > 0.0 && std::isfinite(c) ? h + t * (c - h) : h;
+}
+
+} // namespace gmm

@@ -1,0 +1,106 @@
+// Geomorphing (de Boer 2000, 3.1; Lindstrom-style vertex morphing as in the NDL notes):
+// a drawn block moves each vertex that its next coarser level drops toward the coarse
+// surface beneath it, by a per-block factor t in [0, 1], so that a level switch happens
+// when the block already looks like the coarser level instead of popping.
+//
+// Everything is vertical: a vertex keeps its grid position (x, y) and only its height
+// moves, h' = h + t (c - h), c the height of the coarse surface at (x, y). Draped textures
+// and the slope texture are addressed by grid position, so nothing swims.
+//
+// Which vertices move, and where to (morphedHeight, mirrored in the mapper's vertex shader):
+// - interior samples of a block at level m (strictly inside its border): toward the block's
+//   next valid level m' with its own edges, i.e. the grid C' x R' (edgeSamples at m') split
+//   along (i, j)-(i+1, j+1) diagonals, except, in a ring, the south-east and north-west
+//   corner cells, split along the other diagonal (Tessellate's corner triangles). Samples
+//   of level m' lie on that grid and do not move. Factor: the block's `blockT`.
+// - samples on a shared edge sampled at edge level n: toward the edge polyline at the edge's
+//   target level (the next valid level of the block(s) that set the edge level), by the
+//   edge's factor. One MorphEdge per shared edge, read by both blocks: the two sides cannot
+//   disagree, so morphing opens no crack.
+// - block corners never move (every level keeps them).
+//
+// Factors keep the certificate. The drawn height of a part (inner grid, side strip) is
+// affine in the factors of its vertices, so its error is bounded by interpolating the exact
+// errors of the part with its vertices as drawn and at their targets (MorphBounds.h):
+// (1 - t_b) E_0 + t_b E_1 for the inner grid, bilinear in (t_e, t_b) for a strip. Each
+// block takes the largest t_b that keeps its inner grid, and its strips with the edges it
+// sets moving alike, within tau / f_b; then each edge takes the factor of the block(s)
+// setting its level, lowered until the strips on both sides are within their blocks'
+// budgets. So the morphed surface is certified at tau like the unmorphed one.
+#pragma once
+
+#include "Heightfield.h"
+#include "MorphBounds.h"
+#include "Quadtree.h"
+#include "Tessellate.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace gmm
+{
+
+// One shared block edge: sampled at `level`, its other samples moving toward the polyline
+// at `target` by t. level -1: the edge is not drawn.
+struct MorphEdge
+{
+  int8_t level = -1;
+  int8_t target = -1;
+  float t = 0.0f;
+};
+
+// Per-frame morph data: the only thing that changes from frame to frame.
+struct MorphFrame
+{
+  std::vector<float> blockT;       // per block, interior factor (0 when not drawn)
+  std::vector<int8_t> blockTarget; // per block, next valid level (-1: top level or not drawn)
+  // Vertical edges: (blockCols + 1) lines x blockRows, index r * (blockCols + 1) + line
+  // (line c is the west edge of block column c). Horizontal edges: blockCols x
+  // (blockRows + 1) lines, index line * blockCols + c.
+  std::vector<MorphEdge> vEdges;
+  std::vector<MorphEdge> hEdges;
+  double maxBoundPixels = 0.0; // certified bound of the morphed surface, max over blocks
+};
+
+// The next valid level above m for a w x h block (Levels.h), or -1 when m is its top level.
+int nextValidLevel(int widthQuads, int heightQuads, int m);
+
+// Per-block part errors of the configuration each block was last seen with, so that a frame
+// computes them only for blocks whose configuration or targets changed. One per engine.
+struct MorphCache
+{
+  std::vector<std::array<int8_t, 10>> key; // level, 4 edge levels, target, 4 edge targets
+  std::vector<PartErrors> errors;
+  const void* heights = nullptr; // the heights the errors are of (reset on change)
+  EmitScratch scratch;
+};
+
+// Morph factors for one frame. `levels` and `factor` (pixels per unit of stored height,
+// per block) are those of the frame (Engine::levels(), Engine::pixelFactors()); tau the
+// pixel error the levels were selected with. A block whose factor is not finite and > 0
+// does not morph.
+void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out);
+
+// No morphing at all: every factor 0 (what a frame with geomorphing off draws).
+void clearMorph(const Quadtree& qt, MorphFrame& out);
+
+// Height (stored units) the drawn surface gives sample (i, j) under `frame`: the sample's
+// own height for a vertex that does not move. Only meaningful for samples that drawn
+// triangles use.
+double morphedHeight(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j);
+
+// The height of the coarse surface a vertex moves toward (its own height when it does not
+// move), i.e. morphedHeight at factor 1, and the vertex's factor; exposed for tests.
+double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j, double* factorOut);
+
+// The one rule for where a vertex goes: sample (i, j) of `block` (inside or on its border)
+// when the interior moves toward level `target` and side s's edge toward the polyline at
+// level `edgeTarget[s]` (-1: does not move). Corners never move.
+double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
+  const std::array<int, 4>& edgeTarget, int i, int j);
+
+} // namespace gmm

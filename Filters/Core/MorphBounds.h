@@ -1,0 +1,43 @@
+// Exact errors of a block's parts with their vertices as drawn or at their morph targets:
+// what the geomorph factors are chosen from (Morph.h).
+//
+// A part is the inner grid or one side strip (Tessellate's BlockPart). In a strip, the
+// edge vertices (on the block's border) move with the edge's factor t_e and the inner-ring
+// vertices with the block's factor t_b. On every triangle the drawn height is
+//     S + t_e dE + t_b dR
+// (S the unmorphed triangle, dE and dR the interpolated displacements of its edge and ring
+// vertices at factor 1): affine in (t_e, t_b), hence the bilinear interpolation of its
+// values at the four corners (0 or 1, 0 or 1). Its distance to any sample it covers is
+// therefore at most the bilinear interpolation of the four corner errors E_er (the maximum
+// over the part's samples of |S + e dE + r dR - h|). The inner grid has no edge vertex:
+// its bound is (1 - t_b) E_0 + t_b E_1. These are exact maxima over samples, not estimates.
+#pragma once
+
+#include "Heightfield.h"
+#include "Quadtree.h"
+#include "Tessellate.h"
+
+#include <array>
+
+namespace gmm
+{
+
+struct PartErrors
+{
+  double inner[2] = { 0.0, 0.0 }; // ring vertices as drawn / at their targets
+  // side[s][e * 2 + r]: strip s with edge vertices (e) and ring vertices (r) as drawn (0)
+  // or at their targets (1).
+  double side[4][4] = {};
+  bool innerFrozen = false;     // nodata involved: the part must not morph
+  std::array<bool, 4> sideFrozen{ false, false, false, false };
+};
+
+// Bound of a strip at factors (te, tb): bilinear in the four corner errors.
+double stripBound(const double e[4], double te, double tb);
+
+// Errors of every part of `block` drawn with `config`, its interior moving toward level
+// `target` (-1: not moving) and side s's edge toward `edgeTarget[s]` (-1: not moving).
+PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, EmitScratch& scratch);
+
+} // namespace gmm

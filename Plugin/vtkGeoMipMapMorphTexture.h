@@ -1,0 +1,67 @@
+/**
+ * @file   vtkGeoMipMapMorphTexture.h
+ * @brief  The per-frame geomorph data of vtkGeoMipMapMapper on the GPU (Morph.h).
+ *
+ * One RG32F 2D texture, texel = (target level, factor) of a block or a shared edge, plus
+ * the block band starts, so that the vertex shader (vtkGeoMipMapShaders.h) moves a vertex
+ * exactly as gmm::morphedHeight does, from its sample (i, j) alone:
+ *   rows [0, br):          blocks (c, r)
+ *   rows [br, 2 br):       vertical edges (line 0..bc, r)
+ *   rows [2 br, 3 br + 1): horizontal edges (c, line 0..br)
+ *   row 3 br + 1:          colStart (bc + 1 values), row 3 br + 2: rowStart (br + 1)
+ * with bc x br blocks. It is the only data uploaded per frame for morphing (a few bytes
+ * per block); nothing per vertex. Lives in one OpenGL context.
+ * Not wrapped, not installed: private to geomipmap::Rendering.
+ */
+#ifndef vtkGeoMipMapMorphTexture_h
+#define vtkGeoMipMapMorphTexture_h
+
+#include "vtkNew.h"
+
+#include <cstddef> // For size_t
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkWindow;
+namespace gmm
+{
+struct MorphFrame;
+struct Quadtree;
+}
+
+class vtkGeoMipMapMorphTexture
+{
+public:
+  vtkGeoMipMapMorphTexture();
+  ~vtkGeoMipMapMorphTexture();
+
+  /**
+   * Uploads one frame's morph data. Returns "" or why it cannot be stored (more blocks or
+   * samples than the texture or a float index can hold): the mapper then draws unmorphed.
+   */
+  std::string Update(vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt, const gmm::MorphFrame& frame);
+  bool HasData() const;
+  /** Binds a texture unit for a draw; Deactivate() after it. */
+  void Activate();
+  void Deactivate();
+  /** gmmMorph (the unit) and gmmMorphLayout (bc, br). */
+  void SetUniforms(vtkShaderProgram* program) const;
+  void Release(vtkWindow* win);
+  void Forget();
+  size_t GetBytes() const { return this->Data.size() * sizeof(float); }
+
+private:
+  vtkGeoMipMapMorphTexture(const vtkGeoMipMapMorphTexture&) = delete;
+  void operator=(const vtkGeoMipMapMorphTexture&) = delete;
+
+  vtkNew<vtkTextureObject> Texture;
+  std::vector<float> Data;
+  int Blocks[2] = { 0, 0 };
+  int Unit = -1;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGeoMipMapMorphTexture.h

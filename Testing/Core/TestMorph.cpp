@@ -1,0 +1,314 @@
+// Geomorphing (Morph.h): where vertices move, and that the morphed surface keeps the
+// certificate and stays watertight.
+//
+// - HandComputed: targets on a 9 x 9 block worked out by hand (cell diagonals, the ring's
+//   south-east corner cell, an edge polyline).
+// - TargetsLieOnCoarseLevel: every interior vertex of a block at level m moves to the surface
+//   that Tessellate emits for the block at its next level (rasterised independently,
+//   CoreTestUtil), and at factor 1 the morphed level-m surface equals that surface wherever
+//   the two triangulations nest (counted and reported; see design.md for where they do not).
+// - CertifiedWhileMorphing: random terrains and cameras; the morphed surface measured with
+//   the independent screen-error measure stays within tau, every in-frustum sample is
+//   covered, and triangles sharing a sample agree on its morphed height (no crack).
+#include "CoreTestUtil.h"
+#include "Engine.h"
+#include "Levels.h"
+#include "Morph.h"
+#include "SyntheticTerrain.h"
+#include "Tessellate.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+using namespace gmmtest;
+
+namespace
+{
+gmm::Heightfield handField()
+{
+  gmm::Heightfield hf;
+  hf.nx = hf.ny = 9;
+  hf.z.resize(81);
+  for (int j = 0; j < 9; ++j)
+    for (int i = 0; i < 9; ++i)
+      hf.z[hf.index(i, j)] = static_cast<float>(i * i + 3 * j * j + i * j + ((i * 7 + j * 5) % 4));
+  return hf;
+}
+
+std::vector<double> morphedHeights(const gmm::Engine& e, const gmm::MorphFrame& f)
+{
+  const gmm::Heightfield& hf = e.heightfield();
+  std::vector<double> z(hf.sampleCount());
+  for (int j = 0; j < hf.ny; ++j)
+    for (int i = 0; i < hf.nx; ++i)
+      z[hf.index(i, j)] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, i, j);
+  return z;
+}
+
+gmm::View randomCamera(Rng& rng, const gmm::Heightfield& hf)
+{
+  const double ext = std::max(std::fabs(hf.dx) * (hf.nx - 1), std::fabs(hf.dy) * (hf.ny - 1));
+  gmm::View v;
+  v.viewportWidth = 1280;
+  v.viewportHeight = 720;
+  const double pi = 3.14159265358979323846;
+  const int i = randInt(rng, 0, hf.nx - 1), j = randInt(rng, 0, hf.ny - 1);
+  const double az = randReal(rng, 0, 2 * pi), pitch = -randReal(rng, 5, 60) * pi / 180;
+  v.eye = { hf.worldX(i), hf.worldY(j), hf.height(i, j) + std::exp(randReal(rng, std::log(5.0), std::log(ext))) };
+  v.forward = { std::cos(pitch) * std::cos(az), std::cos(pitch) * std::sin(az), std::sin(pitch) };
+  v.up = { 0, 0, 1 };
+  v.fovYDegrees = randReal(rng, 30, 70);
+  v.nearDistance = 0.5;
+  v.farDistance = 1e6;
+  return v;
+}
+} // namespace
+
+TEST(Morph, HandComputed)
+{
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(handField(), 8, 1), "");
+  ASSERT_EQ(e.quadtree().blockCount(), 1);
+  const gmm::Heightfield& hf = e.heightfield();
+  auto h = [&](int i, int j) { return static_cast<double>(hf.height(i, j)); };
+  e.updateWithLevels({ 0 });
+  gmm::MorphFrame f;
+  gmm::clearMorph(e.quadtree(), f);
+  EXPECT_EQ(gmm::nextValidLevel(8, 8, 0), 1);
+  EXPECT_EQ(gmm::nextValidLevel(8, 8, 3), -1);
+  EXPECT_EQ(gmm::nextValidLevel(40, 12, 3), 6); // 2^4, 2^5 cover 12 but not 40: skipped
+  f.blockTarget[0] = 1;
+  f.blockT[0] = 1.0f;
+  f.hEdges[0].level = 0; // south edge
+  f.hEdges[0].target = 1;
+  f.hEdges[0].t = 0.25f;
+  double t = -1;
+  // (1, 1): cell (0,0)-(2,2), on its (0,0)-(2,2) diagonal
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 1, 1, &t), 0.5 * (h(0, 0) + h(2, 2)));
+  EXPECT_EQ(t, 1.0);
+  // (3, 2): cell (2,2)-(4,4), point (0.5, 0) on its south side
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 3, 2, &t), 0.5 * (h(2, 2) + h(4, 2)));
+  // (5, 3): cell (4,2)-(6,4), fx = fy = 0.5 on the main diagonal
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 5, 3, &t), 0.5 * (h(4, 2) + h(6, 4)));
+  // (7, 1): the south-east corner cell (6,0)-(8,2) is split along (8,0)-(6,2)
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 7, 1, &t), 0.5 * (h(8, 0) + h(6, 2)));
+  // (1, 7): the north-west corner cell (0,6)-(2,8), along (2,6)-(0,8)
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 1, 7, &t), 0.5 * (h(2, 6) + h(0, 8)));
+  // (4, 4): a level-1 sample does not move
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 4, 4, &t), h(4, 4));
+  // (3, 0): south edge, between edge samples 2 and 4 of level 1, edge factor 0.25
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 3, 0, &t), 0.5 * (h(2, 0) + h(4, 0)));
+  EXPECT_EQ(t, 0.25);
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, 3, 0),
+    h(3, 0) + 0.25 * (0.5 * (h(2, 0) + h(4, 0)) - h(3, 0)));
+  // (3, 8): north edge has no morph data: stays
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, 3, 8), h(3, 8));
+  // corners never move
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, 8, 0), h(8, 0));
+  // level 2 (step 4) as the target: (5, 5) in cell (4,4)-(8,8), which is a ring's north-east
+  // corner cell (main diagonal), fx = fy = 0.25
+  f.blockTarget[0] = 2;
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 5, 5, &t), h(4, 4) + 0.25 * (h(8, 8) - h(4, 4)));
+  // (2, 6) in the north-west corner cell (0,4)-(4,8): fx 0.5, fy 0.5, on the (4,4)-(0,8) diagonal
+  EXPECT_DOUBLE_EQ(gmm::morphTarget(hf, e.quadtree(), e.levels(), f, 2, 6, &t), 0.5 * (h(4, 4) + h(0, 8)));
+}
+
+// Interior targets against the next level's own triangles, rasterised by CoreTestUtil; and
+// the fully morphed level-m surface against that level everywhere in the block.
+TEST(Morph, TargetsLieOnCoarseLevel)
+{
+  Rng rng(77);
+  std::size_t vertices = 0, samples = 0, samplesEqual = 0, differThin = 0, differCorner = 0, differElsewhere = 0;
+  for (int t = 0; t < 40; ++t)
+  {
+    const int nx = randInt(rng, 9, 90), ny = randInt(rng, 9, 90);
+    gmm::Heightfield hf = roughTerrain(nx, ny, rng);
+    const int maxQ = 1 << randInt(rng, 2, 5);
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, maxQ, 1), "");
+    const gmm::Quadtree& qt = e.quadtree();
+    for (int b = 0; b < qt.blockCount(); ++b)
+    {
+      const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+      for (int m = 0; m <= gmm::topLevel(w, h); ++m)
+      {
+        const int next = gmm::nextValidLevel(w, h, m);
+        if (!refLevelValid(w, h, m) || next < 0)
+          continue;
+        ASSERT_TRUE(refLevelValid(w, h, next));
+        std::vector<int8_t> levels(qt.blockCount(), -1);
+        levels[b] = static_cast<int8_t>(m);
+        ASSERT_EQ(e.updateWithLevels(levels).triangles > 0, true);
+        const std::vector<uint32_t> fine = e.indices();
+        levels[b] = static_cast<int8_t>(next);
+        e.updateWithLevels(levels);
+        const SurfaceSample coarse = sampleSurface(hf, e.indices());
+        levels[b] = static_cast<int8_t>(m);
+        e.updateWithLevels(levels);
+        gmm::MorphFrame f;
+        gmm::clearMorph(qt, f);
+        f.blockTarget[b] = static_cast<int8_t>(next);
+        f.blockT[b] = 1.0f;
+        const int c = b % qt.blockCols, r = b / qt.blockCols;
+        // its four edges follow it to the next level too, as they do when it sets them
+        for (gmm::MorphEdge* edge : { &f.hEdges[static_cast<std::size_t>(r) * qt.blockCols + c],
+               &f.hEdges[static_cast<std::size_t>(r + 1) * qt.blockCols + c],
+               &f.vEdges[static_cast<std::size_t>(r) * (qt.blockCols + 1) + c],
+               &f.vEdges[static_cast<std::size_t>(r) * (qt.blockCols + 1) + c + 1] })
+          *edge = gmm::MorphEdge{ static_cast<int8_t>(m), static_cast<int8_t>(next), 1.0f };
+        std::vector<double> z = morphedHeights(e, f);
+        std::vector<uint8_t> used(hf.sampleCount(), 0);
+        for (uint32_t v : fine)
+          used[v] = 1;
+        const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i)
+          {
+            const std::size_t k = hf.index(i, j);
+            if (!used[k])
+              continue;
+            ++vertices;
+            ASSERT_NEAR(z[k], coarse.z[k], 1e-9 * (1 + std::fabs(coarse.z[k])))
+              << nx << "x" << ny << " block " << b << " (" << w << "x" << h << ") level " << m
+              << " -> " << next << " vertex (" << i << "," << j << ")";
+          }
+        const SurfaceSample morphed = sampleSurface(hf, fine, z.data());
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i)
+          {
+            const std::size_t k = hf.index(i, j);
+            ++samples;
+            if (std::fabs(morphed.z[k] - coarse.z[k]) <= 1e-9 * (1 + std::fabs(coarse.z[k])))
+            {
+              ++samplesEqual;
+              continue;
+            }
+            // Where they may differ: in a thin last interval of the coarse grid, or in the
+            // coarse ring's south-east / north-west corner cells (other diagonal).
+            const int s = 1 << next;
+            const bool thinI = (w % s) && i >= i0 + (w / s) * s;
+            const bool thinJ = (h % s) && j >= j0 + (h / s) * s;
+            const bool ring = s < w && s < h;
+            const bool lastCol = i >= i1 - ((w % s) ? w % s : s), firstCol = i <= i0 + s;
+            const bool lastRow = j >= j1 - ((h % s) ? h % s : s), firstRow = j <= j0 + s;
+            const bool corner = ring && ((lastCol && firstRow) || (firstCol && lastRow));
+            if (thinI || thinJ)
+              ++differThin;
+            else if (corner)
+              ++differCorner;
+            else
+            {
+              ++differElsewhere;
+              ADD_FAILURE() << nx << "x" << ny << " block " << b << " (" << w << "x" << h << ") level "
+                            << m << " -> " << next << ": morphed surface differs at (" << i << "," << j << ")";
+              return;
+            }
+          }
+      }
+    }
+  }
+  std::printf("[ morph ] %zu vertices on the next level's surface; at factor 1 the "
+              "level-m surface equals the next level at %.2f%% of %zu block samples\n",
+    vertices, 100.0 * samplesEqual / std::max<std::size_t>(1, samples), samples);
+  std::printf("[ morph ] differing samples: %zu in thin last intervals, %zu in the ring's SE/NW corner cells, %zu elsewhere\n",
+    differThin, differCorner, differElsewhere);
+  EXPECT_GT(vertices, 10000u);
+}
+
+TEST(Morph, CertifiedWhileMorphing)
+{
+  Rng rng(4242);
+  std::size_t checked = 0, partial = 0, framesMoved = 0;
+  double worst = 0.0;
+  for (int t = 0; t < 12; ++t)
+  {
+    const int nx = randInt(rng, 65, 200), ny = randInt(rng, 65, 160);
+    gmm::Heightfield hf = t % 2 ? roughTerrain(nx, ny, rng, 10.0, t % 4 == 1 ? -12.0 : 12.0, 400.0, 0.02)
+                               : gmm::makeSyntheticTerrain(nx, ny, 20.0, 100 + t, 800.0, 1);
+    const int maxQ = 1 << randInt(rng, 3, 5);
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, maxQ, 1), "");
+    gmm::MorphCache cache;
+    for (int c = 0; c < 6; ++c)
+    {
+      const gmm::View v = randomCamera(rng, e.heightfield());
+      for (double tau : { 1.0, 2.0, 4.0 })
+      {
+        e.update(v, tau);
+        ASSERT_EQ(e.lastError(), "");
+        gmm::MorphFrame f;
+        gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, f);
+        const std::vector<double> z = morphedHeights(e, f);
+        bool moved = false;
+        for (std::size_t k = 0; k < z.size(); ++k)
+          moved = moved || z[k] != e.heightfield().heights()[k];
+        framesMoved += moved;
+        for (float bt : f.blockT)
+          partial += bt > 0.0f && bt < 1.0f;
+        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, tau, MeasureTransform(), z.data());
+        const SurfaceSample s = sampleSurface(e.heightfield(), e.indices(), z.data());
+        checked += m.inFrustum;
+        worst = std::max(worst, m.maxDist / tau);
+        EXPECT_EQ(m.uncovered, 0u) << m.first;
+        EXPECT_EQ(m.violations, 0u) << "tau " << tau << ": " << m.first;
+        EXPECT_LE(f.maxBoundPixels, tau * (1 + 1e-9));
+        EXPECT_LE(s.maxDisagreement, 1e-9 * 2000) << "triangles disagree on a shared sample";
+        if (::testing::Test::HasFailure())
+          return;
+      }
+    }
+  }
+  std::printf("[ morph ] %zu in-frustum samples, %zu frames with moved vertices, %zu blocks "
+              "part-way morphed; worst measured/tau %.4f\n",
+    checked, framesMoved, partial, worst);
+  EXPECT_GT(framesMoved, 100u); // the campaign really morphed
+  EXPECT_GT(partial, 1000u);
+}
+
+// Holes and degenerate shapes: a DEM with nodata, one a single quad wide, and the smallest
+// DEM. Drawn vertices keep finite heights, blocks touching nodata do not morph, and the
+// morphed frame still measures within tau with every in-frustum sample covered.
+TEST(Morph, NodataAndThinDEMs)
+{
+  Rng rng(99);
+  std::vector<gmm::Heightfield> fields;
+  gmm::Heightfield holes = roughTerrain(120, 90, rng);
+  for (int j = 30; j < 45; ++j)
+    for (int i = 50; i < 70; ++i)
+      holes.z[holes.index(i, j)] = std::numeric_limits<float>::quiet_NaN();
+  holes.z[holes.index(5, 80)] = std::numeric_limits<float>::quiet_NaN();
+  fields.push_back(holes);
+  fields.push_back(roughTerrain(2, 200, rng));
+  fields.push_back(roughTerrain(150, 2, rng));
+  fields.push_back(roughTerrain(2, 2, rng));
+  for (const gmm::Heightfield& hf : fields)
+  {
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+    gmm::MorphCache cache;
+    for (int c = 0; c < 8; ++c)
+    {
+      const gmm::View v = randomCamera(rng, e.heightfield());
+      for (double tau : { 2.0, 8.0 })
+      {
+        e.update(v, tau);
+        ASSERT_EQ(e.lastError(), "");
+        gmm::MorphFrame f;
+        gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, f);
+        const std::vector<double> z = morphedHeights(e, f);
+        for (uint32_t k : e.indices())
+          ASSERT_TRUE(std::isfinite(z[k])) << hf.nx << "x" << hf.ny << " vertex " << k;
+        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, tau, MeasureTransform(), z.data());
+        EXPECT_EQ(m.violations, 0u) << hf.nx << "x" << hf.ny << ": " << m.first;
+        EXPECT_EQ(m.uncovered, 0u) << hf.nx << "x" << hf.ny << ": " << m.first;
+        const gmm::Quadtree& qt = e.quadtree();
+        for (int b = 0; b < qt.blockCount(); ++b)
+          if (qt.blockHasNodata[b])
+            EXPECT_EQ(f.blockT[b], 0.0f) << "block " << b << " has nodata";
+        if (::testing::Test::HasFailure())
+          return;
+      }
+    }
+  }
+}

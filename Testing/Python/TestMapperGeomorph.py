@@ -1,0 +1,121 @@
+"""vtkGeoMipMapMapper.Geomorphing: the vertex shader moves vertices exactly as the engine
+does (issue #13).
+
+A 257^2 fractal terrain at tau 2, block 32, seen low and oblique so that many blocks are
+part-way through their morph. The mapper's depth buffer is compared with that of a stock
+vtkPolyDataMapper drawing vtkGeoMipMapFilter's mesh for the same camera: with geomorphing
+on (the default) the filter outputs the morphed heights gmm::morphedHeight computes on the
+CPU, so the two depth buffers must agree (up to float rounding: the shader computes in
+float, the filter in double); against the filter's unmorphed mesh they must not, or the
+test would prove nothing. With geomorphing off, the mapper draws the unmorphed mesh. Also:
+the drawn (morphed) surface measures within tau by the independent measure, the mapper's
+certified bound is <= tau, and no background shows through the morphed terrain (no crack).
+"""
+
+import numpy as np
+from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkRenderer
+
+import geomipmap
+import refscene
+from gmmtestutil import check_within_tau
+
+W, H = 480, 320
+TAU, BLOCK = 2.0, 32
+check = refscene.Checks()
+
+src = geomipmap.vtkGeoMipMapFractalSource()
+src.SetDimensions(257, 257)
+src.SetSpacing(30.0)
+src.SetSeed(5)
+src.Update()
+image = src.GetOutput()
+
+mapper = geomipmap.vtkGeoMipMapMapper()
+mapper.SetInputData(image)
+mapper.SetPixelError(TAU)
+mapper.SetBlockSize(BLOCK)
+mapper.ScalarVisibilityOff()
+check(mapper.GetGeomorphing(), "geomorphing is on by default")
+actor = vtkActor()
+actor.SetMapper(mapper)
+ren = vtkRenderer()
+ren.SetBackground(0.0, 0.0, 0.0)
+ren.AddActor(actor)
+win = refscene.window(W, H, ren)
+x0, x1, y0, y1, z0, z1 = mapper.GetBounds()
+cam = vtkCamera()
+cam.SetPosition(x0 - 200.0, 0.5 * (y0 + y1), z1 + 150.0)
+cam.SetFocalPoint(0.5 * (x0 + x1), 0.5 * (y0 + y1), z0)
+cam.SetViewUp(0.0, 0.0, 1.0)
+cam.SetViewAngle(45.0)
+ren.SetActiveCamera(cam)
+ren.ResetCameraClippingRange(x0, x1, y0, y1, z0, z1)
+
+
+def filter_mesh(morph):
+    f = geomipmap.vtkGeoMipMapFilter()
+    f.SetInputData(image)
+    f.SetCamera(cam)
+    f.SetViewportSize(W, H)
+    f.SetPixelError(TAU)
+    f.SetBlockSize(BLOCK)
+    f.SetGeomorphing(morph)
+    f.Update()
+    return f.GetOutput()
+
+
+def depth_of(actor_):
+    ren.RemoveAllViewProps()
+    ren.AddActor(actor_)
+    win.Render()
+    d = refscene.depth(win)
+    ren.RemoveAllViewProps()
+    ren.AddActor(actor)
+    return d
+
+
+mesh_on, mesh_off = filter_mesh(True), filter_mesh(False)
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+
+z_on = vtk_to_numpy(mesh_on.GetPoints().GetData())[:, 2]
+z_off = vtk_to_numpy(mesh_off.GetPoints().GetData())[:, 2]
+moved = np.count_nonzero(np.abs(z_on - z_off) > 1e-3)
+check(mesh_on.GetNumberOfPolys() == mesh_off.GetNumberOfPolys() and moved > 200,
+      f"the filter's morphed mesh moves {moved} of {len(z_on)} vertices (same triangles)")
+
+win.Render()
+check(mapper.GetNumberOfRenderedTriangles() == mesh_on.GetNumberOfPolys(),
+      f"mapper {mapper.GetNumberOfRenderedTriangles()} triangles, filter {mesh_on.GetNumberOfPolys()}")
+check(0.0 < mapper.GetMaximumScreenSpaceError() <= TAU,
+      f"certified bound of the morphed surface {mapper.GetMaximumScreenSpaceError():.4f} px <= tau")
+gpu = refscene.depth(win)
+cpu_on = depth_of(refscene.stock_actor(mesh_on))
+cpu_off = depth_of(refscene.stock_actor(mesh_off))
+terrain = cpu_off < 1.0
+# Depth differences in window depth units, over the pixels the terrain covers.
+eps = 5e-7  # float rounding reaches 2e-7 here (shader in float, filter in double)
+off_on = np.count_nonzero(np.abs(gpu - cpu_on)[terrain] > eps)
+off_off = np.count_nonzero(np.abs(gpu - cpu_off)[terrain] > eps)
+n = np.count_nonzero(terrain)
+print(f"morphed: {n} terrain pixels; depth differs (> {eps}) from the filter's morphed mesh at "
+      f"{off_on}, from its unmorphed mesh at {off_off}")
+check(n > 0.3 * W * H, f"the terrain covers {n} pixels")
+check(off_on <= 0.002 * n, f"GPU morph = CPU morph: {off_on} of {n} pixels differ in depth")
+check(off_off > 20 * max(off_on, 1) and off_off > 0.01 * n,
+      f"... and the unmorphed mesh is visibly different ({off_off} pixels)")
+# Cracks would show the background inside the terrain: pixels more than 4 px inside the
+# unmorphed coverage (silhouettes move by up to tau) must all be drawn.
+inside = ~refscene.dilate(~terrain, 4)
+holes = np.count_nonzero(inside & (gpu >= 1.0))
+check(holes == 0 and np.count_nonzero(inside) > 0.5 * n,
+      f"no background through the morphed terrain ({holes} of {np.count_nonzero(inside)} pixels)")
+check_within_tau(check, image, ren, actor, mapper, "morphed frame")
+
+mapper.GeomorphingOff()
+win.Render()
+gpu_plain = refscene.depth(win)
+plain_off = np.count_nonzero(np.abs(gpu_plain - cpu_off)[terrain] > eps)
+print(f"geomorphing off: depth differs from the unmorphed mesh at {plain_off} pixels")
+check(plain_off <= 0.002 * n, f"geomorphing off draws the unmorphed mesh ({plain_off} pixels differ)")
+check_within_tau(check, image, ren, actor, mapper, "geomorphing off")
+check.exit()
