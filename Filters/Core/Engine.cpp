@@ -48,6 +48,40 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
 
 const FrameStats& Engine::update(const View& view, double tau)
 {
+  if (!prepareView(view, tau))
+  {
+    return finishFrame(nullptr);
+  }
+  const Terrain& t = *terrain_;
+  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
+  return finishFrame(&factor_, &visibleList_);
+}
+
+const FrameStats& Engine::update(const View& view, double tau, std::size_t triangleBudget)
+{
+  if (triangleBudget == 0)
+  {
+    return update(view, tau);
+  }
+  if (!prepareView(view, tau))
+  {
+    finishFrame(nullptr);
+    stats_.triangleBudget = triangleBudget;
+    return stats_;
+  }
+  const Terrain& t = *terrain_;
+  BudgetOutcome outcome;
+  selectLevelsWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, levels_,
+    budgetScratch_, outcome);
+  finishFrame(&factor_, &visibleList_);
+  stats_.triangleBudget = triangleBudget;
+  stats_.budgetReached = outcome.stop != BudgetStop::Tau;
+  stats_.overBudget = outcome.stop == BudgetStop::OverBudget;
+  return stats_;
+}
+
+bool Engine::prepareView(const View& view, double tau)
+{
   lastError_ = empty() ? "no heightfield" : validateView(view);
   if (lastError_.empty() && !(std::isfinite(tau) && tau >= 0.0))
   {
@@ -58,14 +92,13 @@ const FrameStats& Engine::update(const View& view, double tau)
   if (!lastError_.empty())
   {
     levels_.assign(terrain_->qt.blockCount(), -1);
-    return finishFrame(nullptr);
+    return false;
   }
   const Terrain& t = *terrain_;
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
   cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_, visibleList_);
   projectionFactors(t.qt, view, toWorld, visibleList_, metric_, factor_);
-  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
-  return finishFrame(&factor_, &visibleList_);
+  return true;
 }
 
 std::string validateHeightScale(double scale)

@@ -7,6 +7,7 @@
 //   draw(e.indices());                             // only if !s.reused
 #pragma once
 
+#include "BudgetSelection.h"
 #include "ErrorTable.h"
 #include "Heightfield.h"
 #include "IndexArena.h"
@@ -33,6 +34,10 @@ struct FrameStats
   double maxGeometricError = 0.0; // certified bound, data units (metres x height scale)
   bool reused = false;           // indices identical to the previous frame's, not regenerated
   int blocksRetessellated = 0;   // blocks whose triangles were regenerated this frame
+  // Budgeted frames (update with a triangle budget; all 0 / false otherwise):
+  std::size_t triangleBudget = 0; // the budget in force
+  bool budgetReached = false;     // the budget, not tau, stopped refinement
+  bool overBudget = false;        // the coarsest selection alone exceeds it (drawn anyway)
 };
 
 // "" when `scale` is a usable vertical exaggeration (finite and > 0), else the reason: the
@@ -56,6 +61,13 @@ public:
   // levels, and NaN, negative and +inf are refused (+inf is not read as "coarsest"). A view
   // that sees no block (e.g. a far plane short of the terrain) is not an error.
   const FrameStats& update(const View& view, double tau);
+
+  // The same frame within at most `triangleBudget` triangles (BudgetSelection.h): refines
+  // the drawn block with the largest projected error until the budget or tau stops it, so
+  // maxScreenError is the smallest certified error the budget allows. 0 = no budget,
+  // exactly update(view, tau). If even the coarsest selection exceeds the budget it is
+  // drawn and stats().overBudget says so.
+  const FrameStats& update(const View& view, double tau, std::size_t triangleBudget);
 
   // Vertical exaggeration: the drawn surface is z0 + scale * height. Culling, the bound and
   // view-independent errors all see the scaled surface; the tables are not rebuilt (errors
@@ -82,6 +94,8 @@ public:
   // renderer mirrors in an index buffer and updates incrementally (IndexArena.h).
   const IndexArena& indexArena() const { return arena_; }
   const std::vector<int8_t>& levels() const { return levels_; }
+  // The blocks drawn this frame (level >= 0), in selection order.
+  const std::vector<int>& drawnBlocks() const { return drawnList_; }
   const FrameStats& stats() const { return stats_; }
   const std::string& lastError() const { return lastError_; }
   const Heightfield& heightfield() const { return terrain_->hf; }
@@ -91,6 +105,9 @@ public:
   bool empty() const { return terrain_->qt.blockCount() == 0; }
 
 private:
+  // Validates the view and tau, culls and computes projection factors; false (levels all
+  // -1, lastError() set) when the frame is refused.
+  bool prepareView(const View& view, double tau);
   // `candidates`: the only blocks that may have a level >= 0 this frame (null: any).
   const FrameStats& finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates = nullptr);
 
@@ -102,6 +119,7 @@ private:
   std::vector<uint8_t> visible_;
   std::vector<int> visibleList_;
   SelectionScratch selectScratch_;
+  BudgetScratch budgetScratch_;
   std::vector<int> drawnList_, nowDrawn_; // blocks drawn last frame / this frame
   std::vector<double> factor_;
   std::vector<int8_t> levels_;
