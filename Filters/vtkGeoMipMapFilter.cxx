@@ -119,7 +119,7 @@ int vtkGeoMipMapFilter::RequestData(
       vtkErrorMacro("Cannot use the camera: " << err);
       return 0;
     }
-    stats = &in.Engine.update(view, this->PixelError);
+    stats = &in.Engine.update(view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget));
   }
   if (!in.Engine.lastError().empty())
   {
@@ -245,6 +245,21 @@ void vtkGeoMipMapFilter::SetHeightScale(double scale)
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapFilter::SetTriangleBudget(vtkIdType budget)
+{
+  if (budget < 0)
+  {
+    vtkErrorMacro("TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << this->TriangleBudget);
+    return;
+  }
+  if (budget != this->TriangleBudget)
+  {
+    this->TriangleBudget = budget;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetPixelError(double tau)
 {
   if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
@@ -261,6 +276,7 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]
      << "\n";
   os << indent << "PixelError: " << this->PixelError << "\n";
+  os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "TableCache: " << this->TableCache << "\n";
   os << indent << "TableCacheDirectory: "

@@ -36,6 +36,7 @@ void BudgetController::reset()
   w_ = sn_ = st_ = snn_ = snt_ = 0.0;
   fixed_ = perTriangle_ = 0.0;
   frames_ = 0;
+  lastTriangles_ = 0;
 }
 
 void BudgetController::observe(double seconds, std::size_t triangles)
@@ -51,6 +52,7 @@ void BudgetController::observe(double seconds, std::size_t triangles)
   snn_ = f * snn_ + n * n;
   snt_ = f * snt_ + n * seconds;
   ++frames_;
+  lastTriangles_ = triangles;
   fit();
 }
 
@@ -94,7 +96,7 @@ std::size_t BudgetController::budgetFor(double seconds)
     return budget_;
   }
   double want = (seconds - fixed_) / perTriangle_;
-  want = std::min(want, static_cast<double>(budget_) * settings_.maxGrowth);
+  want = std::min(want, static_cast<double>(lastTriangles_) * settings_.maxGrowth);
   want = std::max(want, static_cast<double>(settings_.minBudget));
   want = std::min(want, static_cast<double>(settings_.maxBudget));
   budget_ = static_cast<std::size_t>(want);

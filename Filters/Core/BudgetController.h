@@ -10,9 +10,11 @@
 //
 // Hysteresis: the budget in force is kept while its predicted time is within
 // `hysteresis` (a fraction) of the target, so measurement noise does not make it
-// oscillate; when it moves, it moves to the predicted budget, but it grows at most by
-// `maxGrowth` per frame (a model learnt on small frames may extrapolate badly) and drops
-// as far as needed at once (a slow frame is worse than a coarse one).
+// oscillate; when it moves, it moves to the predicted budget, but it grows at most to
+// `maxGrowth` times the triangles last drawn (a model learnt on small frames may
+// extrapolate badly, and a budget far above what tau lets the scene draw would allow one
+// very slow frame when the view changes) and drops as far as needed at once (a slow frame
+// is worse than a coarse one).
 //
 //   BudgetController c;
 //   std::size_t n = c.budgetFor(allocatedSeconds);  // before the frame
@@ -34,7 +36,7 @@ public:
     std::size_t minBudget = 512;
     std::size_t maxBudget = std::size_t(1) << 30;
     double hysteresis = 0.1; // keep the budget while predicted time is within 10 % of target
-    double maxGrowth = 2.0;  // at most x2 per frame
+    double maxGrowth = 2.0;  // at most x2 the triangles last drawn
     double forgetting = 0.7; // weight of the past per observed frame (0..1)
   };
 
@@ -75,6 +77,7 @@ private:
   double w_ = 0.0, sn_ = 0.0, st_ = 0.0, snn_ = 0.0, snt_ = 0.0;
   double fixed_ = 0.0, perTriangle_ = 0.0;
   int frames_ = 0;
+  std::size_t lastTriangles_ = 0;
 };
 
 } // namespace gmm
