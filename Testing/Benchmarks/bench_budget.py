@@ -48,6 +48,10 @@ def parse():
     p.add_argument("--measure-every", type=int, default=6)
     p.add_argument("--budget", type=int, default=150000)
     p.add_argument("--no-lod-actors", action="store_true")
+    p.add_argument("--modes", default="rate,lod,fixed,order",
+                   help="which of the four parts to run (rate, lod, fixed, order)")
+    p.add_argument("--block-order", action="store_true",
+                   help="FrontToBack off in modes 1 and 3 (for comparison runs)")
     p.add_argument("--trace", action="store_true",
                    help="print each frame of the frame-rate mode (ms, budget, triangles, error)")
     p.add_argument("--data", default=os.environ.get("GEOMIPMAP_DATA_DIR", os.path.join(
@@ -155,6 +159,7 @@ def frame_rate_mode(image, flight, args, size, out):
     m = geomipmap.vtkGeoMipMapMapper()
     m.SetInputData(image)
     m.SetPixelError(0.0)
+    m.SetFrontToBack(not args.block_order)
     m.FollowAllocatedRenderTimeOn()
     from vtkmodules.vtkRenderingCore import vtkActor
     a = vtkActor()
@@ -260,6 +265,7 @@ def fixed_budget_mode(image, flight, args, size, out):
     m = geomipmap.vtkGeoMipMapMapper()
     m.SetInputData(image)
     m.SetPixelError(0.0)
+    m.SetFrontToBack(not args.block_order)
     m.SetTriangleBudget(args.budget)
     a = vtkActor()
     a.SetMapper(m)
@@ -370,11 +376,15 @@ def main():
         flight = Orbit(heights, clearance=300.0, frames=args.frames, pitch=15.0, view_angle=45.0)
         out = {"dem": name, "samples": image.GetNumberOfPoints(), "frames": args.frames,
                "size": list(size), "fps": args.fps, "load_average": os.getloadavg()[0]}
-        frame_rate_mode(image, flight, args, size, out)
-        if not args.no_lod_actors:
+        modes = args.modes.split(",")
+        if "rate" in modes:
+            frame_rate_mode(image, flight, args, size, out)
+        if "lod" in modes and not args.no_lod_actors:
             lod_actor_modes(image, flight, args, size, out)
-        fixed_budget_mode(image, flight, args, size, out)
-        front_to_back(image, flight, args, size, out)
+        if "fixed" in modes:
+            fixed_budget_mode(image, flight, args, size, out)
+        if "order" in modes:
+            front_to_back(image, flight, args, size, out)
         out["seconds"] = time.perf_counter() - t0
         print(json.dumps(out), flush=True)
         results.append(out)
