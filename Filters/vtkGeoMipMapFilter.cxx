@@ -123,7 +123,7 @@ int vtkGeoMipMapFilter::RequestData(
       vtkErrorMacro("Cannot use the camera: " << err);
       return 0;
     }
-    stats = &in.Engine.update(view, this->PixelError);
+    stats = &in.Engine.update(view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget));
   }
   // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.
   const bool morph = this->Geomorphing && !(this->MaximumGeometricError > 0.0 || !this->Camera) &&
@@ -265,6 +265,21 @@ void vtkGeoMipMapFilter::SetHeightScale(double scale)
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapFilter::SetTriangleBudget(vtkIdType budget)
+{
+  if (budget < 0)
+  {
+    vtkErrorMacro("TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << this->TriangleBudget);
+    return;
+  }
+  if (budget != this->TriangleBudget)
+  {
+    this->TriangleBudget = budget;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetPixelError(double tau)
 {
   if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
@@ -281,6 +296,7 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]
      << "\n";
   os << indent << "PixelError: " << this->PixelError << "\n";
+  os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "TableCache: " << this->TableCache << "\n";
   os << indent << "TableCacheDirectory: "

@@ -76,6 +76,16 @@ public:
 
   ///@{
   /**
+   * Triangle budget in view-dependent mode (0, the default: none), as
+   * vtkGeoMipMapMapper::SetTriangleBudget: the smallest certified error within this many
+   * triangles and PixelError. Negative values are rejected with an error.
+   */
+  void SetTriangleBudget(vtkIdType budget);
+  vtkGetMacro(TriangleBudget, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * Data -> world matrix of the actor (vtkProp3D::GetMatrix()) in view-dependent mode;
    * null (default) is the identity. Any invertible affine matrix.
    */
@@ -163,6 +173,7 @@ protected:
   double HeightScale = 1.0;
   int ViewportSize[2] = { 1280, 720 };
   double PixelError = 1.0;
+  vtkIdType TriangleBudget = 0;
   int BlockSize = 64;
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;

@@ -29,6 +29,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
@@ -38,6 +39,8 @@
 #include "vtkWeakPointer.h"
 #include "vtk_glew.h"
 
+#include "BudgetController.h"
+#include "DrawOrder.h"
 #include "Engine.h"
 #include "Morph.h"
 #include "RayCast.h"
@@ -89,6 +92,13 @@ struct vtkGeoMipMapMapper::Internals
 
   // The engine holds a selection of the current terrain (what FreezeLevelOfDetail keeps).
   bool HasSelection = false;
+
+  // FollowAllocatedRenderTime: this machine's cost per frame, learnt from timed frames.
+  gmm::BudgetController Controller;
+  // FrontToBack: the drawn blocks nearest first, and their slots for glMultiDrawElements.
+  std::vector<int> Order;
+  std::vector<GLsizei> Counts;
+  std::vector<const void*> Offsets;
 
   std::vector<unsigned int> Lines; // scratch for wireframe edges
   size_t IndexBytes = 0;
@@ -191,6 +201,53 @@ void vtkGeoMipMapMapper::SetGeomorphing(bool on)
   }
 }
 
+void vtkGeoMipMapMapper::SetTriangleBudget(vtkIdType budget)
+{
+  if (budget < 0)
+  {
+    vtkErrorMacro("TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << this->TriangleBudget);
+    return;
+  }
+  if (budget != this->TriangleBudget)
+  {
+    this->TriangleBudget = budget;
+    this->ModifiedIndicesOnly();
+  }
+}
+
+void vtkGeoMipMapMapper::SetFollowAllocatedRenderTime(bool follow)
+{
+  if (follow != this->FollowAllocatedRenderTime)
+  {
+    this->FollowAllocatedRenderTime = follow;
+    this->Internal->Controller.reset();
+    this->ModifiedIndicesOnly();
+  }
+}
+
+std::size_t vtkGeoMipMapMapper::FrameTriangleBudget(vtkRenderer* ren, vtkActor* act, bool& interactive)
+{
+  interactive = false;
+  const std::size_t fixed = static_cast<std::size_t>(this->TriangleBudget);
+  vtkRenderWindow* win = ren->GetRenderWindow();
+  if (!this->FollowAllocatedRenderTime || !win)
+  {
+    return fixed;
+  }
+  // The interactor switches the window between its DesiredUpdateRate and StillUpdateRate
+  // (vtkInteractorStyle's StartInteraction / EndInteraction); 0.0001 is VTK's still rate.
+  vtkRenderWindowInteractor* iren = win->GetInteractor();
+  const double still = iren ? iren->GetStillUpdateRate() : 0.0001;
+  if (!(win->GetDesiredUpdateRate() > still))
+  {
+    return fixed;
+  }
+  interactive = true;
+  this->LastAllocatedRenderTime = act->GetAllocatedRenderTime();
+  const std::size_t learnt = this->Internal->Controller.budgetFor(this->LastAllocatedRenderTime);
+  return fixed ? std::min(fixed, learnt) : learnt;
+}
+
 void vtkGeoMipMapMapper::SetFreezeLevelOfDetail(bool freeze)
 {
   if (freeze != this->FreezeLevelOfDetail)
@@ -246,6 +303,18 @@ double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
 double vtkGeoMipMapMapper::GetMaximumGeometricError() const
 {
   return this->LastFrameDrawn ? this->Internal->Engine.stats().maxGeometricError : 0.0;
+}
+vtkIdType vtkGeoMipMapMapper::GetTriangleBudgetInForce() const
+{
+  return this->LastFrameDrawn ? static_cast<vtkIdType>(this->Internal->Engine.stats().triangleBudget) : 0;
+}
+bool vtkGeoMipMapMapper::GetTriangleBudgetReached() const
+{
+  return this->LastFrameDrawn && this->Internal->Engine.stats().budgetReached;
+}
+bool vtkGeoMipMapMapper::GetOverTriangleBudget() const
+{
+  return this->LastFrameDrawn && this->Internal->Engine.stats().overBudget;
 }
 bool vtkGeoMipMapMapper::GetIndicesReused() const
 {
@@ -430,6 +499,20 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   this->LastFrameDrawn = this->LastFrameFrozen = false;
   this->LastUpdateTime = this->LastIndexUploadTime = 0.0;
   this->LastIndexUploadBytes = 0;
+  this->LastRenderTime = this->LastAllocatedRenderTime = 0.0;
+  this->LastFragmentsPassed = 0;
+  // The budget (and whether this frame is timed) first: a timed frame starts with the GPU
+  // idle, so that it is charged for its own work only.
+  bool interactive = false;
+  const std::size_t budget = this->FrameTriangleBudget(ren, act, interactive);
+  this->LastFrameInteractive = interactive;
+  if (interactive)
+  {
+    glFinish();
+  }
+  const auto frameStart = Clock::now();
+  const int heightUploadsBefore = this->NumberOfHeightUploads;
+  const double buildTimeBefore = this->LastTerrainBuildTime;
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
   if (!this->Static)
   {
@@ -463,7 +546,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   if (!this->LastFrameFrozen)
   {
     const auto start = Clock::now();
-    in.Engine.update(view, this->PixelError);
+    in.Engine.update(view, this->PixelError, budget);
     this->LastUpdateTime = SecondsSince(start);
     in.HasSelection = in.Engine.lastError().empty();
     if (!in.HasSelection)
@@ -547,8 +630,27 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   {
     this->UploadIndices(act, false);
   }
+  if (this->FrontToBack)
+  {
+    gmm::frontToBack(in.Engine.quadtree(), gmm::heightfieldToWorld(view, hf.z0, this->HeightScale),
+      view.eye, in.Engine.drawnBlocks(), in.Engine.mergedNodeList(), in.Order);
+  }
+  else
+  {
+    in.Order.clear();
+  }
   this->RenderPieceDraw(ren, act);
   this->RenderPieceFinish(ren, act);
+  if (interactive)
+  {
+    glFinish();
+    this->LastRenderTime = SecondsSince(frameStart);
+    // A frame that built tables or uploaded heights says nothing about the cost of drawing.
+    if (this->NumberOfHeightUploads == heightUploadsBefore && this->LastTerrainBuildTime == buildTimeBefore)
+    {
+      in.Controller.observe(this->LastRenderTime, stats.triangles);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -733,6 +835,51 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapMapper::DrawTriangles(unsigned int mode, std::size_t indexCount)
+{
+  Internals& in = *this->Internal;
+  const gmm::IndexArena& arena = in.Engine.indexArena();
+  GLuint query = 0;
+  if (this->CountFragments)
+  {
+    glGenQueries(1, &query);
+    glBeginQuery(GL_SAMPLES_PASSED, query);
+  }
+  // Sorted only when the buffer mirrors the arena's slots (not for wireframe lines or the
+  // plain list drawn without primitive restart).
+  const bool sorted = !in.Order.empty() && in.PrimitiveRestart > 0 && mode != GL_LINES &&
+    in.MirroredArena != 0 && in.MirroredArena == arena.version();
+  if (sorted)
+  {
+    in.Counts.clear();
+    in.Offsets.clear();
+    for (int b : in.Order)
+    {
+      const gmm::IndexArena::Range r = arena.slot(b);
+      if (r.end > r.begin)
+      {
+        in.Counts.push_back(static_cast<GLsizei>(r.end - r.begin));
+        in.Offsets.push_back(reinterpret_cast<const void*>(r.begin * sizeof(GLuint)));
+      }
+    }
+    glMultiDrawElements(mode, in.Counts.data(), GL_UNSIGNED_INT, in.Offsets.data(),
+      static_cast<GLsizei>(in.Counts.size()));
+  }
+  else
+  {
+    glDrawElements(mode, static_cast<GLsizei>(indexCount), GL_UNSIGNED_INT, nullptr);
+  }
+  if (query)
+  {
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 passed = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &passed);
+    glDeleteQueries(1, &query);
+    this->LastFragmentsPassed += static_cast<vtkTypeInt64>(passed);
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 {
   Internals& in = *this->Internal;
@@ -766,7 +913,7 @@ void vtkGeoMipMapMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
   }
-  glDrawElements(mode, static_cast<GLsizei>(tris.IBO->IndexCount), GL_UNSIGNED_INT, nullptr);
+  this->DrawTriangles(mode, tris.IBO->IndexCount);
   if (in.PrimitiveRestart > 0)
   {
     glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
@@ -949,6 +1096,10 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
+  os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
+  os << indent << "FollowAllocatedRenderTime: " << this->FollowAllocatedRenderTime << "\n";
+  os << indent << "FrontToBack: " << this->FrontToBack << "\n";
+  os << indent << "TriangleBudgetInForce: " << this->GetTriangleBudgetInForce() << "\n";
   os << indent << "DrapeImage: " << this->Internal->Drape.GetPointer() << "\n";
   os << indent << "NumberOfRenderedTriangles: " << this->GetNumberOfRenderedTriangles() << "\n";
   os << indent << "NumberOfVisibleBlocks: " << this->GetNumberOfVisibleBlocks() << "\n";

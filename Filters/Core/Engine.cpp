@@ -54,6 +54,52 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
 
 const FrameStats& Engine::update(const View& view, double tau)
 {
+  if (!validFrame(view, tau))
+  {
+    return finishFrame(nullptr);
+  }
+  if (mergedNodes_)
+  {
+    const Terrain& t = *terrain_;
+    const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
+    const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
+    const BoxProjector projector(view, toWorld, metric_);
+    selectHierarchically(&frustum, [&](const Box& b) { return projector.factor(b); }, tau);
+    return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
+  }
+  cullAndProject(view);
+  const Terrain& t = *terrain_;
+  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
+  return finishFrame(&factor_, &visibleList_);
+}
+
+const FrameStats& Engine::update(const View& view, double tau, std::size_t triangleBudget)
+{
+  if (triangleBudget == 0)
+  {
+    return update(view, tau);
+  }
+  if (!validFrame(view, tau))
+  {
+    finishFrame(nullptr);
+    stats_.triangleBudget = triangleBudget;
+    return stats_;
+  }
+  // Budgeted refinement works on the leaf blocks: merged nodes are not used here.
+  cullAndProject(view);
+  const Terrain& t = *terrain_;
+  BudgetOutcome outcome;
+  selectLevelsWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, levels_,
+    budgetScratch_, outcome);
+  finishFrame(&factor_, &visibleList_);
+  stats_.triangleBudget = triangleBudget;
+  stats_.budgetReached = outcome.stop != BudgetStop::Tau;
+  stats_.overBudget = outcome.stop == BudgetStop::OverBudget;
+  return stats_;
+}
+
+bool Engine::validFrame(const View& view, double tau)
+{
   lastError_ = empty() ? "no heightfield" : validateView(view);
   if (lastError_.empty() && !(std::isfinite(tau) && tau >= 0.0))
   {
@@ -64,21 +110,17 @@ const FrameStats& Engine::update(const View& view, double tau)
   if (!lastError_.empty())
   {
     levels_.assign(terrain_->qt.blockCount(), -1);
-    return finishFrame(nullptr);
+    return false;
   }
+  return true;
+}
+
+void Engine::cullAndProject(const View& view)
+{
   const Terrain& t = *terrain_;
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
-  if (mergedNodes_)
-  {
-    const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
-    const BoxProjector projector(view, toWorld, metric_);
-    selectHierarchically(&frustum, [&](const Box& b) { return projector.factor(b); }, tau);
-    return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
-  }
   cullBlocks(t.qt, transformPlanes(frustumOf(view), toWorld), visible_, visibleList_);
   projectionFactors(t.qt, view, toWorld, visibleList_, metric_, factor_);
-  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
-  return finishFrame(&factor_, &visibleList_);
 }
 
 std::string validateHeightScale(double scale)

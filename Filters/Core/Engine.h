@@ -7,6 +7,7 @@
 //   draw(e.indices());                             // only if !s.reused
 #pragma once
 
+#include "BudgetSelection.h"
 #include "ErrorTable.h"
 #include "Heightfield.h"
 #include "IndexArena.h"
@@ -35,6 +36,10 @@ struct FrameStats
   bool reused = false;           // indices identical to the previous frame's, not regenerated
   int blocksRetessellated = 0;   // blocks and merged nodes whose triangles were regenerated
   int mergedNodes = 0;           // quadtree nodes drawn whole (their blocks count as visible)
+  // Budgeted frames (update with a triangle budget; all 0 / false otherwise):
+  std::size_t triangleBudget = 0; // the budget in force
+  bool budgetReached = false;     // the budget, not tau, stopped refinement
+  bool overBudget = false;        // the coarsest selection alone exceeds it (drawn anyway)
 };
 
 // "" when `scale` is a usable vertical exaggeration (finite and > 0), else the reason: the
@@ -58,6 +63,14 @@ public:
   // levels, and NaN, negative and +inf are refused (+inf is not read as "coarsest"). A view
   // that sees no block (e.g. a far plane short of the terrain) is not an error.
   const FrameStats& update(const View& view, double tau);
+
+  // The same frame within at most `triangleBudget` triangles (BudgetSelection.h): refines
+  // the drawn block with the largest projected error until the budget or tau stops it, so
+  // maxScreenError is the smallest certified error the budget allows. 0 = no budget,
+  // exactly update(view, tau). If even the coarsest selection exceeds the budget it is
+  // drawn and stats().overBudget says so. Budgeted frames select block by block: merged
+  // nodes are not used (the refinement works on leaf blocks).
+  const FrameStats& update(const View& view, double tau, std::size_t triangleBudget);
 
   // Vertical exaggeration: the drawn surface is z0 + scale * height. Culling, the bound and
   // view-independent errors all see the scaled surface; the tables are not rebuilt (errors
@@ -95,6 +108,8 @@ public:
   // Pixels per unit of stored-height error of each block this frame (0 for blocks not in
   // view; stale after a failed or view-independent update): what computeMorph (Morph.h) needs.
   const std::vector<double>& pixelFactors() const { return factor_; }
+  // The blocks drawn this frame (level >= 0), in selection order.
+  const std::vector<int>& drawnBlocks() const { return drawnList_; }
   const FrameStats& stats() const { return stats_; }
   const std::string& lastError() const { return lastError_; }
   const Heightfield& heightfield() const { return terrain_->hf; }
@@ -104,6 +119,11 @@ public:
   bool empty() const { return terrain_->qt.blockCount() == 0; }
 
 private:
+  // Validates the view and tau; false (levels all -1, lastError() set) when the frame is
+  // refused.
+  bool validFrame(const View& view, double tau);
+  // Block by block: culls and computes every visible block's projection factor.
+  void cullAndProject(const View& view);
   // `candidates`: the only blocks that may have a level >= 0 this frame (null: any).
   // `merged`: the nodes drawn whole, with their factors when `factor` is given.
   const FrameStats& finishFrame(const std::vector<double>* factor,
@@ -129,6 +149,7 @@ private:
   std::vector<uint8_t> visible_;
   std::vector<int> visibleList_;
   SelectionScratch selectScratch_;
+  BudgetScratch budgetScratch_;
   std::vector<int> drawnList_, nowDrawn_; // blocks drawn last frame / this frame
   std::vector<double> factor_;
   std::vector<int8_t> levels_;

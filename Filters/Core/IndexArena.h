@@ -48,6 +48,13 @@ public:
   uint64_t version() const { return version_; }
   // Otherwise the ranges that changed, sorted and disjoint.
   const std::vector<Range>& dirtyRanges() const { return dirty_; }
+  // Where block `block`'s triangles are in indices(): [begin, end), empty when not drawn.
+  // What a renderer draws to order blocks (glMultiDrawElements) without re-uploading.
+  Range slot(int block) const
+  {
+    const Slot& s = slots_[static_cast<std::size_t>(block)];
+    return Range{ s.offset, s.offset + s.count };
+  }
   // Indices of drawn triangles (3 per triangle), without unused space.
   std::size_t liveIndices() const { return live_; }
   // The drawn triangles, block by block in block order, appended to `out`.

@@ -1,0 +1,20 @@
+// How many triangles emitBlock (Tessellate.h) draws for a block configuration, without
+// drawing them: what a triangle budget is spent on.
+//
+// The count is that of a block without nodata; a block with NaN samples draws fewer
+// (emitBlock drops triangles touching them), so for a budget the count is an upper bound.
+#pragma once
+
+#include "Quadtree.h"
+#include "Tessellate.h"
+
+#include <cstddef>
+
+namespace gmm
+{
+
+// Triangles of `block` drawn whole at `config` (its level must be valid for the block,
+// Levels.h; an invalid one draws nothing and counts 0).
+std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig& config);
+
+} // namespace gmm

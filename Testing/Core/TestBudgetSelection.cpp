@@ -1,0 +1,249 @@
+// Budgeted selection (Engine::update with a triangle budget), checked from outside:
+//  - the drawn triangles never exceed the budget along flights (unless even the coarsest
+//    selection does, which the statistics must then say);
+//  - the drawn surface, measured with the independent screen-error measure
+//    (CoreTestUtil.h), stays within the error the frame reports;
+//  - at the triangle count of a tau-driven frame, the budgeted error is no larger than the
+//    tau-driven one (the budget is that frame's count, so the budgeted frame draws at most
+//    as many triangles: a fair comparison);
+//  - no budget is exactly update(view, tau).
+#include "CoreTestUtil.h"
+#include "Engine.h"
+#include "SyntheticTerrain.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+using namespace gmmtest;
+
+namespace
+{
+// A low flight across the DEM, heading turning, looking ahead and down; the last views
+// are a high oblique and an orthographic one.
+std::vector<gmm::View> flight(const gmm::Heightfield& hf, int frames)
+{
+  std::vector<gmm::View> views;
+  const double w = hf.dx * (hf.nx - 1), h = hf.dy * (hf.ny - 1);
+  for (int k = 0; k < frames; ++k)
+  {
+    const double s = k / double(frames - 1);
+    gmm::View v;
+    v.eye = { hf.x0 + w * (0.1 + 0.8 * s), hf.y0 + h * (0.2 + 0.3 * std::sin(3.0 * s)), 1700.0 + 400.0 * s };
+    const double heading = 0.4 + 2.5 * s;
+    v.forward = { std::cos(heading), std::sin(heading), -0.35 };
+    v.fovYDegrees = 60.0;
+    v.nearDistance = 1.0;
+    v.farDistance = 1e6;
+    v.viewportWidth = 640;
+    v.viewportHeight = 480;
+    views.push_back(v);
+  }
+  gmm::View high = views.front();
+  high.eye = { hf.x0 - 0.2 * w, hf.y0 - 0.2 * h, 6000.0 };
+  high.forward = { 1.0, 1.0, -0.8 };
+  views.push_back(high);
+  gmm::View ortho = high;
+  ortho.parallel = true;
+  ortho.parallelScale = 0.4 * h;
+  views.push_back(ortho);
+  return views;
+}
+
+struct Case
+{
+  const char* name;
+  gmm::Heightfield hf;
+  int blockQuads;
+};
+
+std::vector<Case> cases()
+{
+  Rng rng(1414);
+  std::vector<Case> c;
+  c.push_back({ "synthetic 257^2", gmm::makeSyntheticTerrain(257, 257, 30.0, 7, 1500.0, 1), 32 });
+  c.push_back({ "rough 200x150", roughTerrain(200, 150, rng, 30.0, 30.0, 800.0, 0.05), 16 });
+  c.push_back({ "noisy 130x120", roughTerrain(130, 120, rng, 20.0, 25.0, 300.0, 0.3), 8 });
+  return c;
+}
+} // namespace
+
+TEST(BudgetSelection, TrianglesWithinBudgetOnEveryFrame)
+{
+  for (const Case& c : cases())
+  {
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(c.hf, c.blockQuads, 1), "");
+    int frames = 0, limited = 0;
+    for (const gmm::View& v : flight(c.hf, 24))
+    {
+      for (std::size_t budget : { 64u, 600u, 3000u, 12000u, 50000u })
+      {
+        const gmm::FrameStats s = e.update(v, 0.0, budget);
+        ASSERT_EQ(e.lastError(), "");
+        ASSERT_EQ(s.triangles * 3, e.indices().size());
+        ++frames;
+        limited += s.budgetReached;
+        if (s.overBudget)
+        {
+          // Only when the coarsest selection (every visible block one quad) is over budget.
+          EXPECT_GT(2 * static_cast<std::size_t>(s.visibleBlocks), budget) << c.name;
+          continue;
+        }
+        EXPECT_LE(s.triangles, budget) << c.name << " frame " << frames;
+        // Crack-free and hole-free whatever the budget (neighbours at any levels).
+        std::vector<bool> drawn(e.levels().size());
+        for (std::size_t b = 0; b < drawn.size(); ++b)
+          drawn[b] = e.levels()[b] >= 0;
+        MeshCheckOptions opt;
+        opt.drawn = drawn;
+        const MeshCheckResult mc = checkMesh(e.heightfield(), e.quadtree().colStart,
+          e.quadtree().rowStart, e.indices(), opt);
+        ASSERT_EQ(mc.error, "") << c.name << " budget " << budget;
+      }
+    }
+    EXPECT_GT(limited, frames / 2) << c.name << ": the budgets should bind in most frames";
+  }
+}
+
+TEST(BudgetSelection, DrawnSurfaceWithinReportedError)
+{
+  int measured = 0;
+  double worstRatio = 0.0;
+  for (const Case& c : cases())
+  {
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(c.hf, c.blockQuads, 1), "");
+    for (const gmm::View& v : flight(c.hf, 8))
+    {
+      for (std::size_t budget : { 600u, 5000u, 40000u })
+      {
+        const gmm::FrameStats s = e.update(v, 0.0, budget);
+        ASSERT_EQ(e.lastError(), "");
+        const double bound = s.maxScreenError;
+        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, bound);
+        EXPECT_EQ(m.uncovered, 0u) << c.name << " " << m.first;
+        EXPECT_EQ(m.violations, 0u) << c.name << " budget " << budget << ": measured " << m.maxDist
+                                    << " px > reported " << bound << " px; " << m.first;
+        EXPECT_LE(m.maxVertical, s.maxGeometricError * (1 + 1e-6) + 1e-5) << c.name;
+        if (bound > 0)
+          worstRatio = std::max(worstRatio, m.maxDist / bound);
+        ++measured;
+      }
+    }
+  }
+  std::printf("[ budget ] %d frames measured; worst measured / reported = %.3f\n", measured, worstRatio);
+}
+
+TEST(BudgetSelection, NeverWorseThanTauAtTheSameTriangleCount)
+{
+  int compared = 0, positive = 0, worse = 0;
+  double sumRatio = 0.0, worstRatio = 0.0;
+  for (const Case& c : cases())
+  {
+    gmm::Engine tauEngine, budgetEngine;
+    ASSERT_EQ(tauEngine.setHeightfield(c.hf, c.blockQuads, 1), "");
+    budgetEngine.setTerrain(tauEngine.terrain());
+    // Budgeted frames refine leaf blocks; merged nodes, which can draw fewer triangles
+    // than any block-by-block selection, are not part of them yet. Compare like with like.
+    tauEngine.setMergedNodes(false);
+    for (const gmm::View& v : flight(c.hf, 16))
+    {
+      for (double tau : { 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 64.0 })
+      {
+        const gmm::FrameStats t = tauEngine.update(v, tau);
+        if (t.triangles == 0)
+          continue;
+        // No nodata here, so the drawn count is blockTriangleCount's count.
+        const gmm::FrameStats b = budgetEngine.update(v, 0.0, t.triangles);
+        ASSERT_FALSE(b.overBudget);
+        EXPECT_LE(b.triangles, t.triangles);
+        EXPECT_LE(b.maxScreenError, t.maxScreenError * (1 + 1e-9))
+          << c.name << " tau " << tau << " at " << t.triangles << " triangles";
+        ++compared;
+        if (t.maxScreenError > 0)
+        {
+          ++positive;
+          sumRatio += b.maxScreenError / t.maxScreenError;
+          worstRatio = std::max(worstRatio, b.maxScreenError / t.maxScreenError);
+          worse += b.maxScreenError > t.maxScreenError * (1 + 1e-9);
+        }
+      }
+    }
+  }
+  std::printf("[ budget vs tau ] %d frames, %d with an error; budgeted / tau-driven error: mean %.4f, "
+              "worst %.4f, worse in %d\n",
+    compared, positive, sumRatio / std::max(positive, 1), worstRatio, worse);
+  EXPECT_GT(compared, 100);
+}
+
+TEST(BudgetSelection, TauStopsWhenItComesFirst)
+{
+  const Case c = cases().front();
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(c.hf, c.blockQuads, 1), "");
+  for (const gmm::View& v : flight(c.hf, 6))
+  {
+    const gmm::FrameStats full = e.update(v, 0.0, std::size_t(1) << 40);
+    EXPECT_FALSE(full.budgetReached);
+    EXPECT_EQ(full.maxScreenError, 0.0); // tau 0, unlimited: refined to exactness
+    const gmm::FrameStats s = e.update(v, 2.0, std::size_t(1) << 40);
+    EXPECT_FALSE(s.budgetReached);
+    EXPECT_LE(s.maxScreenError, 2.0);
+    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, 2.0);
+    EXPECT_EQ(m.violations, 0u) << m.first;
+  }
+}
+
+TEST(BudgetSelection, CoarsestOverBudgetIsDrawnAndReported)
+{
+  const Case c = cases().front();
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(c.hf, c.blockQuads, 1), "");
+  const gmm::View v = flight(c.hf, 4)[4]; // the high oblique: every block in view
+  const gmm::FrameStats s = e.update(v, 1.0, 1);
+  EXPECT_TRUE(s.overBudget);
+  EXPECT_TRUE(s.budgetReached);
+  EXPECT_EQ(s.triangleBudget, 1u);
+  EXPECT_EQ(s.triangles, 2u * s.visibleBlocks); // each visible block one quad
+  for (int b = 0; b < e.quadtree().blockCount(); ++b)
+    if (e.levels()[b] >= 0)
+      EXPECT_EQ(e.levels()[b], refTopLevel(e.quadtree().blockWidth(b), e.quadtree().blockHeight(b)));
+}
+
+TEST(BudgetSelection, NoBudgetIsTheTauFrame)
+{
+  const Case c = cases().back();
+  gmm::Engine a, b;
+  ASSERT_EQ(a.setHeightfield(c.hf, c.blockQuads, 1), "");
+  b.setTerrain(a.terrain());
+  for (const gmm::View& v : flight(c.hf, 5))
+  {
+    const gmm::FrameStats sa = a.update(v, 1.5);
+    const gmm::FrameStats sb = b.update(v, 1.5, 0);
+    EXPECT_EQ(a.levels(), b.levels());
+    EXPECT_EQ(a.indices(), b.indices());
+    EXPECT_EQ(sa.maxScreenError, sb.maxScreenError);
+    EXPECT_EQ(sb.triangleBudget, 0u);
+    EXPECT_FALSE(sb.budgetReached);
+  }
+}
+
+TEST(BudgetSelection, BadInputIsRefused)
+{
+  const Case c = cases().back();
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(c.hf, c.blockQuads, 1), "");
+  const gmm::View v = flight(c.hf, 2)[0];
+  EXPECT_EQ(e.update(v, std::nan(""), 1000).triangles, 0u);
+  EXPECT_NE(e.lastError(), "");
+  EXPECT_EQ(e.update(v, -1.0, 1000).triangles, 0u);
+  EXPECT_NE(e.lastError(), "");
+  gmm::View bad = v;
+  bad.forward = { 0, 0, 0 };
+  EXPECT_EQ(e.update(bad, 1.0, 1000).triangles, 0u);
+  EXPECT_NE(e.lastError(), "");
+  gmm::Engine empty;
+  EXPECT_EQ(empty.update(v, 1.0, 1000).triangles, 0u);
+  EXPECT_NE(empty.lastError(), "");
+}

@@ -1,0 +1,76 @@
+// blockTriangleCount against what emitBlock actually emits, for every block shape, level
+// and many edge-level combinations (the budget is spent on these counts).
+#include "CoreTestUtil.h"
+#include "Levels.h"
+#include "Tessellate.h"
+#include "TriangleCount.h"
+
+#include <gtest/gtest.h>
+
+using namespace gmmtest;
+
+namespace
+{
+gmm::Heightfield flatField(int nx, int ny)
+{
+  gmm::Heightfield hf;
+  hf.nx = nx;
+  hf.ny = ny;
+  hf.z.assign(static_cast<std::size_t>(nx) * ny, 1.0f);
+  return hf;
+}
+} // namespace
+
+TEST(TriangleCount, MatchesEmitBlockForEveryLevelAndEdges)
+{
+  Rng rng(14);
+  // Sizes giving ring, one-quad and thin blocks, odd remainders and unequal bands.
+  const int sizes[][3] = { { 65, 65, 16 }, { 70, 41, 16 }, { 2, 40, 8 }, { 33, 2, 8 }, { 100, 77, 32 },
+    { 6, 9, 4 } };
+  int checked = 0;
+  for (const auto& sz : sizes)
+  {
+    const gmm::Heightfield hf = flatField(sz[0], sz[1]);
+    const gmm::Quadtree qt = gmm::buildQuadtree(hf, sz[2]);
+    for (int b = 0; b < qt.blockCount(); ++b)
+    {
+      const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+      const int top = refTopLevel(w, h);
+      for (int m = 0; m <= top; ++m)
+      {
+        if (!refLevelValid(w, h, m))
+          continue;
+        for (int trial = 0; trial < 12; ++trial)
+        {
+          gmm::BlockConfig cfg;
+          cfg.level = m;
+          for (int s = 0; s < 4; ++s)
+            cfg.edgeLevel[s] = trial == 0 ? m : randInt(rng, m, top + 1);
+          std::vector<uint32_t> out;
+          gmm::emitBlock(hf, qt, b, cfg, gmm::BlockPart::Whole, out, true);
+          ASSERT_EQ(gmm::blockTriangleCount(qt, b, cfg), out.size() / 3)
+            << sz[0] << "x" << sz[1] << " block " << b << " (" << w << "x" << h << ") level " << m
+            << " edges " << cfg.edgeLevel[0] << "," << cfg.edgeLevel[1] << "," << cfg.edgeLevel[2]
+            << "," << cfg.edgeLevel[3];
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+// With nodata emitBlock drops triangles: the count stays an upper bound.
+TEST(TriangleCount, BoundsBlocksWithNodata)
+{
+  gmm::Heightfield hf = flatField(65, 65);
+  hf.z[hf.index(10, 10)] = std::numeric_limits<float>::quiet_NaN();
+  const gmm::Quadtree qt = gmm::buildQuadtree(hf, 32);
+  gmm::BlockConfig cfg;
+  cfg.level = 0;
+  cfg.edgeLevel = { 0, 0, 0, 0 };
+  std::vector<uint32_t> out;
+  gmm::emitBlock(hf, qt, 0, cfg, gmm::BlockPart::Whole, out);
+  EXPECT_LT(out.size() / 3, gmm::blockTriangleCount(qt, 0, cfg));
+  EXPECT_EQ(gmm::blockTriangleCount(qt, 0, cfg), 2u * 32 * 32);
+}
