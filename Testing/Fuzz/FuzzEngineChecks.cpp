@@ -40,7 +40,7 @@ void checkFrame(const gmm::Engine& e, bool hasNodata, int maxQ, bool compareFres
   gmmtest::MeshCheckOptions opt;
   opt.drawn.assign(qt.blockCount(), true);
   for (int b = 0; b < qt.blockCount(); ++b)
-    if (e.levels()[b] < 0 || (hasNodata && qt.blockHasNodata[b]))
+    if (!gmm::drawnLevel(e.levels()[b]) || (hasNodata && qt.blockHasNodata[b]))
       opt.drawn[b] = false;
   opt.allowNodataHoles = hasNodata;
   opt.checkArea = !hasNodata; // without nodata the drawn blocks are covered exactly
@@ -51,7 +51,7 @@ void checkFrame(const gmm::Engine& e, bool hasNodata, int maxQ, bool compareFres
   {
     // the per-block cache must give the same triangle set as a fresh tessellation
     std::vector<uint32_t> fresh;
-    gmm::tessellate(hf, qt, e.levels(), fresh);
+    gmm::tessellate(hf, qt, e.levels(), fresh, e.mergedNodeList());
     auto canon = [](const std::vector<uint32_t>& v) {
       std::vector<std::array<uint32_t, 3>> t;
       for (std::size_t i = 0; i + 2 < v.size(); i += 3)
