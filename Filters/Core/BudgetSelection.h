@@ -23,8 +23,10 @@
 // times its projection factor: its own error at its level and the error of every strip
 // joined to a coarser neighbour. Refining a node whose error is its own lowers its level;
 // refining one whose error is a strip lowers the level of the neighbour across that strip
-// (the only way to shrink a strip, as fixStrips does for tau). Merged interior nodes, once
-// the quadtree draws them, join the same loop as entries whose refinement splits them.
+// (the only way to shrink a strip, as fixStrips does for tau). The engine's merged nodes
+// (SelectNodes.h) are not used in budgeted frames yet: they would join the same loop as
+// entries whose refinement splits them, and phase 1 would bisect the hierarchical
+// selection.
 #pragma once
 
 #include "ErrorTable.h"
