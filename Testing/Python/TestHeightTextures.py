@@ -30,12 +30,7 @@ BG = (0.1, 0.1, 0.2)
 check = refscene.Checks()
 
 
-src = geomipmap.vtkGeoMipMapFractalSource()
-src.SetDimensions(301, 157)
-src.SetSpacing(30.0)
-src.SetSeed(21)
-src.Update()
-base = src.GetOutput()
+base = refscene.fractal_image(301, 157, seed=21)
 zf = refscene.heights(base)
 
 ren = vtkRenderer()
@@ -103,12 +98,7 @@ check(refscene.covered(top_stock, BG).mean() > 0.9 and d < 0.01,
       "differ from the stock render")
 
 # Wider than GL_MAX_TEXTURE_SIZE (16384 on llvmpipe; queried, not assumed, by the mapper).
-wide = geomipmap.vtkGeoMipMapFractalSource()
-wide.SetDimensions(16385, 33)
-wide.SetSpacing(30.0)
-wide.SetSeed(4)
-wide.Update()
-wimg = wide.GetOutput()
+wimg = refscene.fractal_image(16385, 33, seed=4)
 mw, aw = ours(wimg)
 seam = 8193 * 30.0  # 16385 = 2 layers of 8193 columns: the seam is after column 8192
 wref = refscene.reference_actor(wimg)

@@ -14,12 +14,7 @@ from gmmtestutil import check_drawn_within_tau
 
 N = 513
 ok = refscene.Checks()
-src = geomipmap.vtkGeoMipMapFractalSource()
-src.SetDimensions(N, N)
-src.SetSpacing(30.0)
-src.SetSeed(7)
-src.Update()
-image = src.GetOutput()
+image = refscene.fractal_image(N, N, seed=7)
 ext = (N - 1) * 30.0
 
 

@@ -26,12 +26,7 @@ W, H = 400, 300
 TAU, BLOCK = 0.5, 32
 check = refscene.Checks()
 
-src = geomipmap.vtkGeoMipMapFractalSource()
-src.SetDimensions(257, 257)
-src.SetSpacing(30.0)
-src.SetSeed(3)
-src.Update()
-image = src.GetOutput()
+image = refscene.fractal_image(257, 257, seed=3)
 
 mapper = geomipmap.vtkGeoMipMapMapper()
 mapper.SetInputData(image)

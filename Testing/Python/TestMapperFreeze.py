@@ -27,12 +27,7 @@ check = refscene.Checks()
 
 
 def fractal(n, spacing, seed):
-    src = geomipmap.vtkGeoMipMapFractalSource()
-    src.SetDimensions(n, n)
-    src.SetSpacing(spacing)
-    src.SetSeed(seed)
-    src.Update()
-    return src.GetOutput()
+    return refscene.fractal_image(n, n, seed=seed, spacing=spacing)
 
 
 image = fractal(257, 30.0, 3)

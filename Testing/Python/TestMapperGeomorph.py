@@ -23,12 +23,7 @@ W, H = 480, 320
 TAU, BLOCK = 2.0, 32
 check = refscene.Checks()
 
-src = geomipmap.vtkGeoMipMapFractalSource()
-src.SetDimensions(257, 257)
-src.SetSpacing(30.0)
-src.SetSeed(5)
-src.Update()
-image = src.GetOutput()
+image = refscene.fractal_image(257, 257, seed=5)
 
 mapper = geomipmap.vtkGeoMipMapMapper()
 mapper.SetInputData(image)

@@ -25,12 +25,7 @@ ok = refscene.Checks()
 
 
 def source():
-    src = geomipmap.vtkGeoMipMapFractalSource()
-    src.SetDimensions(N, N)
-    src.SetSpacing(30.0)
-    src.SetSeed(3)
-    src.Update()
-    return src.GetOutput()
+    return refscene.fractal_image(N, N, seed=3)
 
 
 class Warnings:

@@ -37,6 +37,17 @@ def image_from_heights(z, spacing=(30.0, 30.0), origin=(0.0, 0.0, 0.0), name="El
     return img
 
 
+def fractal_image(nx, ny, seed, spacing=30.0):
+    """vtkGeoMipMapFractalSource's nx x ny terrain (seed, spacing in metres) as an image."""
+    import geomipmap
+    src = geomipmap.vtkGeoMipMapFractalSource()
+    src.SetDimensions(nx, ny)
+    src.SetSpacing(spacing)
+    src.SetSeed(seed)
+    src.Update()
+    return src.GetOutput()
+
+
 def sample_xy(image):
     """World x (per column) and y (per row) of the samples (axis-aligned images)."""
     nx, ny, _ = image.GetDimensions()
