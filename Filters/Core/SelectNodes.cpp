@@ -32,18 +32,15 @@ public:
   void node(int index, bool inside)
   {
     const QuadtreeNode& n = qt_.nodes[index];
-    if (!inside && frustum_)
+    if (!inside)
     {
-      const Overlap o = boxVsFrustum(n.box, *frustum_);
+      // Inside a node wholly in view, every descendant is: no more plane tests below.
+      const Overlap o = frustum_ ? boxVsFrustum(n.box, *frustum_) : Overlap::Inside;
       if (o == Overlap::Outside)
       {
         return;
       }
       inside = o == Overlap::Inside;
-    }
-    else
-    {
-      inside = true;
     }
     if (n.childCount == 0)
     {
@@ -173,8 +170,8 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     {
       break;
     }
-    const std::vector<int> requests = scratch.splitRequests;
-    for (int b : requests)
+    // Splitting walks nodes and lists blocks; it leaves the requests alone.
+    for (int b : scratch.splitRequests)
     {
       if (out.levels[b] == kCoveredLevel)
       {
