@@ -45,7 +45,8 @@ vtkCxxSetObjectMacro(vtkGeoMipMapFilter, ModelMatrix, vtkMatrix4x4);
 
 //------------------------------------------------------------------------------
 vtkGeoMipMapFilter::vtkGeoMipMapFilter()
-  : Internal(new Internals)
+  : GeomorphRange(gmm::kDefaultMorphRange)
+  , Internal(new Internals)
 {
 }
 
@@ -123,6 +124,9 @@ int vtkGeoMipMapFilter::RequestData(
       vtkErrorMacro("Cannot use the camera: " << err);
       return 0;
     }
+    // Geomorphing's level path (MorphRamp.h): also where the range is invalid, none (the
+    // engine follows a path only for a range > 1).
+    in.Engine.setMorphRange(this->Geomorphing && std::isfinite(this->GeomorphRange) ? this->GeomorphRange : 0.0);
     stats = &in.Engine.update(view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget));
   }
   // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.
@@ -131,7 +135,7 @@ int vtkGeoMipMapFilter::RequestData(
   if (morph)
   {
     gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
-      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph);
+      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph, in.Engine.morphRamp());
   }
   else if (!in.Engine.empty())
   {
@@ -304,5 +308,6 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumGeometricError: " << this->MaximumGeometricError << "\n";
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
+  os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";
   os << indent << "ModelMatrix: " << this->ModelMatrix << "\n";
 }

@@ -151,6 +151,22 @@ public:
   vtkBooleanMacro(Geomorphing, bool);
   ///@}
 
+  ///@{
+  /**
+   * How gradually geomorphing changes levels (as vtkGeoMipMapMapper::SetGeomorphRange):
+   * while geomorphing, a block moves through its levels by at most one level per this
+   * factor of change in its distance (default 3), and a morph factor never rises faster
+   * than that from one Update to the next, so that no frame pops. Larger is smoother and
+   * draws more triangles (blocks stay finer than PixelError needs near their switches);
+   * 1 or less selects the coarsest levels within PixelError and morphs each block as far
+   * as its certificate allows, frame by frame. The output of an Update then depends on the
+   * cameras of earlier Updates of this filter (the rise limit), not on the camera alone.
+   * See Documentation/design.md, "Geomorphing".
+   */
+  vtkSetMacro(GeomorphRange, double);
+  vtkGetMacro(GeomorphRange, double);
+  ///@}
+
   /**
    * Height of the full-resolution surface at data coordinates (x, y): origin z +
    * HeightScale * h, linear on the level-0 triangle under it (the triangulation the mesh
@@ -179,6 +195,7 @@ protected:
   char* TableCacheDirectory = nullptr;
   double MaximumGeometricError = 0.0;
   bool Geomorphing = true;
+  double GeomorphRange; // gmm::kDefaultMorphRange
 
 private:
   vtkGeoMipMapFilter(const vtkGeoMipMapFilter&) = delete;

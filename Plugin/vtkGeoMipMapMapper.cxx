@@ -119,7 +119,8 @@ vtkStandardNewMacro(vtkGeoMipMapMapper);
 
 //------------------------------------------------------------------------------
 vtkGeoMipMapMapper::vtkGeoMipMapMapper()
-  : Internal(new Internals)
+  : GeomorphRange(gmm::kDefaultMorphRange)
+  , Internal(new Internals)
 {
   vtkNew<vtkPoints> p;
   p->InsertNextPoint(0.0, 0.0, 0.0);
@@ -197,6 +198,15 @@ void vtkGeoMipMapMapper::SetGeomorphing(bool on)
   if (on != this->Geomorphing)
   {
     this->Geomorphing = on;
+    this->ModifiedIndicesOnly();
+  }
+}
+
+void vtkGeoMipMapMapper::SetGeomorphRange(double range)
+{
+  if (range != this->GeomorphRange)
+  {
+    this->GeomorphRange = range;
     this->ModifiedIndicesOnly();
   }
 }
@@ -546,6 +556,10 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   if (!this->LastFrameFrozen)
   {
     const auto start = Clock::now();
+    // Geomorphing's level path (MorphRamp.h); none where the range is not finite (the
+    // engine follows a path only for a range > 1).
+    in.Engine.setMorphRange(
+      this->Geomorphing && std::isfinite(this->GeomorphRange) ? this->GeomorphRange : 0.0);
     in.Engine.update(view, this->PixelError, budget);
     this->LastUpdateTime = SecondsSince(start);
     in.HasSelection = in.Engine.lastError().empty();
@@ -612,7 +626,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     if (!this->LastFrameFrozen || in.Morph.blockT.size() != static_cast<size_t>(qt.blockCount()))
     {
       gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(), this->PixelError,
-        in.MorphCache, in.Morph);
+        in.MorphCache, in.Morph, in.Engine.morphRamp());
     }
     const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
     in.Morphing = merr.empty();
@@ -1096,6 +1110,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
+  os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";
   os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
   os << indent << "FollowAllocatedRenderTime: " << this->FollowAllocatedRenderTime << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";

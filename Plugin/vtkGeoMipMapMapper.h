@@ -215,6 +215,22 @@ public:
 
   ///@{
   /**
+   * How gradually geomorphing changes levels (default 3): while geomorphing, a block moves
+   * through its levels by at most one level per this factor of change in its distance, and
+   * its morph factor never rises faster than that from one frame to the next, so that no
+   * frame pops where two levels' errors are close or a neighbour's switch frees a block.
+   * Larger is smoother and draws more triangles (blocks stay finer than PixelError needs
+   * near their switches: +13 % on the Puget Sound flight, +55 % on a rough fractal at the
+   * default; Documentation/benchmarks.md, "Geomorphing"). 1 or less selects the coarsest
+   * levels within PixelError and morphs each block as far as its certificate allows. The
+   * certificate holds at any range.
+   */
+  void SetGeomorphRange(double range);
+  vtkGetMacro(GeomorphRange, double);
+  ///@}
+
+  ///@{
+  /**
    * Triangle budget of every frame (0, the default: none). The engine refines the drawn
    * block with the largest projected error until the next refinement would exceed the
    * budget or every error is within PixelError, whichever comes first
@@ -439,6 +455,7 @@ protected:
   bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
   bool FreezeLevelOfDetail = false;
   bool Geomorphing = true;
+  double GeomorphRange; // gmm::kDefaultMorphRange
   bool LastFrameFrozen = false; // the last RenderPiece kept the frozen selection
   vtkIdType TriangleBudget = 0;
   bool FollowAllocatedRenderTime = false;

@@ -54,9 +54,19 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
 
 const FrameStats& Engine::update(const View& view, double tau)
 {
+  rampCurrent_ = false;
   if (!validFrame(view, tau))
   {
     return finishFrame(nullptr);
+  }
+  MorphRamp* ramp = nullptr;
+  if (ramp_.active())
+  {
+    ramp_.level.resize(terrain_->qt.blockCount());
+    ramp_.factor.resize(terrain_->qt.blockCount());
+    ramp_.lambda.resize(terrain_->qt.blockCount());
+    ramp = &ramp_;
+    rampCurrent_ = true;
   }
   if (mergedNodes_)
   {
@@ -64,12 +74,12 @@ const FrameStats& Engine::update(const View& view, double tau)
     const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
     const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
     const BoxProjector projector(view, toWorld, metric_);
-    selectHierarchically(&frustum, [&](const Box& b) { return projector.factor(b); }, tau);
+    selectHierarchically(&frustum, [&](const Box& b) { return projector.factor(b); }, tau, ramp);
     return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
   }
   cullAndProject(view);
   const Terrain& t = *terrain_;
-  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_);
+  selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_, ramp);
   return finishFrame(&factor_, &visibleList_);
 }
 
@@ -79,6 +89,7 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
   {
     return update(view, tau);
   }
+  rampCurrent_ = false;
   if (!validFrame(view, tau))
   {
     finishFrame(nullptr);
@@ -146,6 +157,7 @@ std::string Engine::setHeightScale(double scale)
 
 const FrameStats& Engine::updateForError(double maxError)
 {
+  rampCurrent_ = false;
   lastError_ = empty() ? "no heightfield" : std::string();
   if (lastError_.empty() && !(std::isfinite(maxError) && maxError >= 0.0))
   {
@@ -168,11 +180,11 @@ const FrameStats& Engine::updateForError(double maxError)
   return finishFrame(nullptr);
 }
 
-void Engine::selectHierarchically(
-  const Frustum* frustum, const std::function<double(const Box&)>& factorOf, double tau)
+void Engine::selectHierarchically(const Frustum* frustum,
+  const std::function<double(const Box&)>& factorOf, double tau, MorphRamp* ramp)
 {
   const Terrain& t = *terrain_;
-  selectNodes(t.qt, t.table, frustum, factorOf, tau, nodeSelection_, nodeScratch_, selectScratch_);
+  selectNodes(t.qt, t.table, frustum, factorOf, tau, nodeSelection_, nodeScratch_, selectScratch_, ramp);
   // The engine's per-block lists take the selection's (swapped: both are rebuilt per frame).
   levels_.swap(nodeSelection_.levels);
   factor_.swap(nodeSelection_.factor);
@@ -181,6 +193,7 @@ void Engine::selectHierarchically(
 
 const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
 {
+  rampCurrent_ = false;
   lastError_.clear();
   levels_.assign(terrain_->qt.blockCount(), -1);
   if (levels.size() != levels_.size())

@@ -96,6 +96,16 @@ public:
   // The nodes drawn whole in the last frame (indices into quadtree().nodes).
   const std::vector<int>& mergedNodeList() const { return drawnMerged_; }
 
+  // Geomorphing's level path (MorphRamp.h): range > 1 makes update(view, tau) choose each
+  // block's level on a path that changes by at most one level per factor `range` of
+  // distance, and report the path's morph factors (morphRamp()) for computeMorph; <= 1
+  // (the default) selects the coarsest levels within tau. Budgeted and view-independent
+  // frames never follow it.
+  void setMorphRange(double range) { ramp_.range = range; }
+  double morphRange() const { return ramp_.range; }
+  // The path of the last frame, or null when it did not follow one.
+  const MorphRamp* morphRamp() const { return rampCurrent_ ? &ramp_ : nullptr; }
+
   void setErrorMetric(ErrorMetric m) { metric_ = m; }
   ErrorMetric errorMetric() const { return metric_; }
 
@@ -134,12 +144,14 @@ private:
     FrameStats& s);
   // Hierarchical selection for update (frustum and projector given) or updateForError.
   void selectHierarchically(const Frustum* frustum, const std::function<double(const Box&)>& factorOf,
-    double tau);
+    double tau, MorphRamp* ramp = nullptr);
 
   // Never null: an empty Terrain when there is no heightfield.
   std::shared_ptr<const Terrain> terrain_ = std::make_shared<const Terrain>();
   ErrorMetric metric_ = ErrorMetric::Certified;
   bool mergedNodes_ = true;
+  MorphRamp ramp_;
+  bool rampCurrent_ = false;
   NodeSelection nodeSelection_;
   NodeScratch nodeScratch_;
   std::vector<uint8_t> nodeDrawn_, nodeNow_; // per node: in the arena / merged this frame

@@ -125,6 +125,17 @@ std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int c, int 
 }
 } // namespace
 
+int chainIndex(const Quadtree& qt, int block, int level)
+{
+  const int w = qt.blockWidth(block), h = qt.blockHeight(block);
+  int k = 0;
+  for (int m = 0; m >= 0 && m < level; m = nextValidLevel(w, h, m))
+  {
+    ++k;
+  }
+  return k;
+}
+
 int nextValidLevel(int widthQuads, int heightQuads, int m)
 {
   const int top = topLevel(widthQuads, heightQuads);
@@ -148,7 +159,8 @@ void clearMorph(const Quadtree& qt, MorphFrame& out)
 }
 
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out)
+  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
+  const MorphRamp* ramp)
 {
   clearMorph(qt, out);
   const int blocks = qt.blockCount();
@@ -157,7 +169,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     cache.key.assign(blocks, std::array<int8_t, 10>{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 });
     cache.errors.assign(blocks, PartErrors());
     cache.heights = hf.heights();
+    cache.lastLambda.assign(blocks, -1.0);
+    cache.lastFactor.assign(blocks, 0.0);
   }
+  const bool limited = ramp && ramp->active();
   auto budget = [&](int b) {
     const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
     return std::isfinite(f) && f > 0.0 ? tau / f : -1.0; // -1: does not morph
@@ -245,6 +260,21 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
         t = std::min(t, diagonalReach(e, x)); // edge moving with the block
       }
     }
+    // The level path (MorphRamp.h): a block at its path's level morphs no further than the
+    // path, so that it reaches factor 0 where the path refines it and 1 where it coarsens.
+    if (limited && ramp->level[b] == levels[b])
+    {
+      t = std::min(t, static_cast<double>(ramp->factor[b]));
+    }
+    // The rise limit: the drawn continuous level rises no faster than the path may. Any
+    // lower factor keeps the certificate (every part's bound holds on [0, t]), and the edge
+    // factors below are fitted to the factor chosen here.
+    const double fPrev = cache.lastFactor[b], lambdaPrev = cache.lastLambda[b];
+    if (limited && lambdaPrev >= 0.0 && fPrev > 0.0)
+    {
+      const double rise = rampSlope(ramp->range) * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
+      t = std::min(t, std::max(0.0, lambdaPrev + rise - chainIndex(qt, b, levels[b])));
+    }
     out.blockT[b] = factorDown(t);
   }
 
@@ -307,6 +337,12 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));
     }
     out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    const bool drawn = levels[b] >= 0 && b < static_cast<int>(factor.size());
+    cache.lastLambda[b] = drawn ? chainIndex(qt, b, levels[b]) + out.blockT[b] : -1.0;
+    cache.lastFactor[b] = drawn ? factor[b] : 0.0;
   }
 }
 

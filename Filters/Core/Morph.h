@@ -31,6 +31,7 @@
 
 #include "Heightfield.h"
 #include "MorphBounds.h"
+#include "MorphRamp.h"
 #include "Quadtree.h"
 #include "Tessellate.h"
 
@@ -66,6 +67,9 @@ struct MorphFrame
 // The next valid level above m for a w x h block (Levels.h), or -1 when m is its top level.
 int nextValidLevel(int widthQuads, int heightQuads, int m);
 
+// Position of valid level `level` on the block's chain 0, nextValidLevel(0), ...
+int chainIndex(const Quadtree& qt, int block, int level);
+
 // Per-block part errors of the configuration each block was last seen with, so that a frame
 // computes them only for blocks whose configuration or targets changed. One per engine.
 struct MorphCache
@@ -74,14 +78,22 @@ struct MorphCache
   std::vector<PartErrors> errors;
   const void* heights = nullptr; // the heights the errors are of (reset on change)
   EmitScratch scratch;
+  // The rate limit (MorphRamp.h, kMorphSettlePerFrame): each block's drawn continuous level
+  // (chain index + factor; -1 when not drawn) and projection factor in the last frame.
+  std::vector<double> lastLambda;
+  std::vector<double> lastFactor;
 };
 
 // Morph factors for one frame. `levels` and `factor` (pixels per unit of stored height,
 // per block) are those of the frame (Engine::levels(), Engine::pixelFactors()); tau the
 // pixel error the levels were selected with. A block whose factor is not finite and > 0
-// does not morph.
+// does not morph. `ramp` (Engine::morphRamp()): the level path the frame was selected on;
+// a block at its path's level morphs no further than the path's factor, and no block's
+// morph rises faster than the path's slope allows since the last call with the same cache
+// (MorphRamp.h), so that factors change smoothly with the camera.
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out);
+  const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
+  const MorphRamp* ramp = nullptr);
 
 // No morphing at all: every factor 0 (what a frame with geomorphing off draws).
 void clearMorph(const Quadtree& qt, MorphFrame& out);

@@ -82,6 +82,62 @@ int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
   return 0;
 }
 
+int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, MorphRamp* ramp)
+{
+  if (!ramp || !ramp->active())
+  {
+    return coarsestWithin(t, b, blockTop(qt, b), budget);
+  }
+  MorphChain chain;
+  const int links = morphChain(qt, b, chain);
+  const double lambda = rampedLambda(t, qt, b, budget, ramp->range);
+  float factor = 0.0f;
+  const int m = levelOnChain(chain, links, lambda, factor);
+  ramp->lambda[b] = lambda;
+  ramp->level[b] = static_cast<int8_t>(m);
+  ramp->factor[b] = factor;
+  return m;
+}
+
+void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
+  const std::vector<double>& budget, const std::vector<int>& drawn, std::vector<int8_t>& levels,
+  MorphRamp& ramp)
+{
+  for (int b : drawn)
+  {
+    const int m = levels[b];
+    if (m < 0 || m != ramp.level[b])
+    {
+      continue; // refined below its path already (fixStrips)
+    }
+    const int c = b % qt.blockCols, r = b / qt.blockCols;
+    const int neighbour[4] = { b - qt.blockCols, b + 1, b + qt.blockCols, b - 1 };
+    const bool exists[4] = { r > 0, c + 1 < qt.blockCols, r + 1 < qt.blockRows, c > 0 };
+    double lambda = ramp.lambda[b];
+    for (int side = 0; side < 4; ++side)
+    {
+      const int nb = exists[side] ? neighbour[side] : -1;
+      const int nbLevel = nb >= 0 ? levels[nb] : -1;
+      if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel))
+      {
+        continue; // no strip of the neighbour joins this edge
+      }
+      lambda = std::min(lambda,
+        rampedLambdaBeside(t, qt, b, nb, (side + 2) % 4, nbLevel, budget[nb], ramp.range));
+    }
+    if (lambda < ramp.lambda[b])
+    {
+      MorphChain chain;
+      const int links = morphChain(qt, b, chain);
+      float factor = 0.0f;
+      levels[b] = static_cast<int8_t>(levelOnChain(chain, links, lambda, factor));
+      ramp.lambda[b] = lambda;
+      ramp.level[b] = levels[b];
+      ramp.factor[b] = factor;
+    }
+  }
+}
+
 void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
   const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch)
 {
@@ -156,11 +212,16 @@ namespace
 {
 // `drawn`: the blocks with levels[b] >= 0 (the others are -1).
 void selectWithBudgets(const Quadtree& qt, const ErrorTable& table, const std::vector<double>& budget,
-  const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch)
+  const std::vector<int>& drawn, std::vector<int8_t>& levels, SelectionScratch& scratch,
+  MorphRamp* ramp = nullptr)
 {
   for (int b : drawn)
   {
-    levels[b] = static_cast<int8_t>(coarsestWithin(table, b, blockTop(qt, b), budget[b]));
+    levels[b] = static_cast<int8_t>(leafLevel(qt, table, b, budget[b], ramp));
+  }
+  if (ramp && ramp->active())
+  {
+    rampBesideFinerNeighbours(qt, table, budget, drawn, levels, *ramp);
   }
   fixStrips(qt, table, budget, drawn, levels, scratch);
 }
@@ -277,7 +338,7 @@ double errorBudget(double tau, double factor)
 
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
   const std::vector<double>& factor, double tau, std::vector<int8_t>& levels,
-  SelectionScratch& scratch)
+  SelectionScratch& scratch, MorphRamp* ramp)
 {
   // Budgets are read for drawn (listed) blocks only: the others keep stale values.
   std::vector<double>& budget = scratch.budget;
@@ -291,7 +352,7 @@ void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector
       budget[b] = errorBudget(tau, factor[b]);
     }
   }
-  selectWithBudgets(qt, table, budget, visible, levels, scratch);
+  selectWithBudgets(qt, table, budget, visible, levels, scratch, ramp);
 }
 
 void selectLevelsForError(

@@ -3,6 +3,7 @@
 
 #include "ErrorTable.h"
 #include "Heightfield.h"
+#include "MorphRamp.h"
 #include "Quadtree.h"
 #include "View.h"
 
@@ -92,6 +93,18 @@ struct SelectionScratch
 // always fits. Budgets are finite (errorBudget), so a level marked +inf never fits.
 int coarsestWithin(const ErrorTable& t, int b, int top, double budget);
 
+// The level block b takes before fixStrips: coarsestWithin, or, when `ramp` is active,
+// geomorphing's path (MorphRamp.h), recorded in `ramp` (its vectors sized to the blocks).
+int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, MorphRamp* ramp);
+
+// Geomorphing's path beside finer neighbours (MorphRamp.h, rampedLambdaBeside): lowers
+// each listed block on its path so that the strips of its finer neighbours stay within their
+// budgets as it coarsens, before fixStrips would have to refine it at once. Only blocks at
+// their path's level are changed, and only to finer levels.
+void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
+  const std::vector<double>& budget, const std::vector<int>& drawn, std::vector<int8_t>& levels,
+  MorphRamp& ramp);
+
 // Refines neighbours until every strip of a drawn block (listed in `drawn`) joined to a
 // coarser edge fits the block's budget. Levels only decrease, so this ends; a neighbour at
 // the block's level (or finer) removes the coarse edge altogether. A neighbour drawn by a
@@ -101,7 +114,7 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
 
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
   const std::vector<double>& factor, double tau, std::vector<int8_t>& levels,
-  SelectionScratch& scratch);
+  SelectionScratch& scratch, MorphRamp* ramp = nullptr);
 
 // View-independent selection: every block takes the coarsest level whose error (including
 // strips) is <= maxError metres (finite and >= 0).

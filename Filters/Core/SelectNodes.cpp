@@ -130,7 +130,7 @@ private:
 
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
   const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
-  NodeScratch& ns, SelectionScratch& scratch)
+  NodeScratch& ns, SelectionScratch& scratch, MorphRamp* ramp)
 {
   const std::size_t blocks = static_cast<std::size_t>(qt.blockCount());
   out.blocks.clear();
@@ -161,10 +161,13 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     {
       out.factor[b] = factorOf(qt.blockBox[b]);
       scratch.budget[b] = errorBudget(tau, out.factor[b]);
-      out.levels[b] = static_cast<int8_t>(coarsestWithin(table, b,
-        topLevel(qt.blockWidth(b), qt.blockHeight(b)), scratch.budget[b]));
+      out.levels[b] = static_cast<int8_t>(leafLevel(qt, table, b, scratch.budget[b], ramp));
     }
     ns.newBlocks.clear();
+    if (ramp && ramp->active())
+    {
+      rampBesideFinerNeighbours(qt, table, scratch.budget, out.blocks, out.levels, *ramp);
+    }
     fixStrips(qt, table, scratch.budget, out.blocks, out.levels, scratch);
     if (scratch.splitRequests.empty())
     {

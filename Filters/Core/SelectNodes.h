@@ -4,7 +4,7 @@
 // instead of one coarsest block per leaf, in triangles and in per-frame work.
 //
 // The blocks the walk reaches are chosen as selectLevels does (coarsest level within the
-// budget, then fixStrips). A block beside a merged node draws that side with its corners
+// budget, or geomorphing's path when `ramp` is active, then fixStrips). A block beside a merged node draws that side with its corners
 // only; when that strip does not fit the block's budget, the merged node is split (its
 // children are walked in turn) and the blocks are re-checked, until every drawn block and
 // every merged node fits. Each split goes one level down the quadtree, so this ends.
@@ -46,6 +46,6 @@ struct NodeSelection
 
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
   const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
-  NodeScratch& nodeScratch, SelectionScratch& scratch);
+  NodeScratch& nodeScratch, SelectionScratch& scratch, MorphRamp* ramp = nullptr);
 
 } // namespace gmm

@@ -6,8 +6,9 @@ part-way through their morph. The mapper's depth buffer is compared with that of
 vtkPolyDataMapper drawing vtkGeoMipMapFilter's mesh for the same camera: with geomorphing
 on (the default) the filter outputs the morphed heights gmm::morphedHeight computes on the
 CPU, so the two depth buffers must agree (up to float rounding: the shader computes in
-float, the filter in double); against the filter's unmorphed mesh they must not, or the
-test would prove nothing. With geomorphing off, the mapper draws the unmorphed mesh. Also:
+float, the filter in double); against the same triangles unmorphed they must not, or the
+test would prove nothing. With geomorphing off, the mapper draws the filter's mesh with
+geomorphing off (the coarsest levels within tau, unmorphed). Also:
 the drawn (morphed) surface measures within tau by the independent measure, the mapper's
 certified bound is <= tau, and no background shows through the morphed terrain (no crack).
 """
@@ -69,14 +70,29 @@ def depth_of(actor_):
     return d
 
 
-mesh_on, mesh_off = filter_mesh(True), filter_mesh(False)
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
 
-z_on = vtk_to_numpy(mesh_on.GetPoints().GetData())[:, 2]
-z_off = vtk_to_numpy(mesh_off.GetPoints().GetData())[:, 2]
-moved = np.count_nonzero(np.abs(z_on - z_off) > 1e-3)
-check(mesh_on.GetNumberOfPolys() == mesh_off.GetNumberOfPolys() and moved > 200,
-      f"the filter's morphed mesh moves {moved} of {len(z_on)} vertices (same triangles)")
+# The mapper's first frame is a fresh filter's (geomorphing's rise limit has no history yet).
+mesh_on = filter_mesh(True)
+# The same triangles unmorphed: every vertex is a sample, back at the sample's own height.
+# (Geomorphing also chooses the levels, so the filter with geomorphing off, mesh_plain, draws
+# other triangles.)
+mesh_off = vtkPolyData()
+mesh_off.DeepCopy(mesh_on)
+P = vtk_to_numpy(mesh_off.GetPoints().GetData()).copy()
+ox, oy, _ = image.GetOrigin()
+sx, sy, _ = image.GetSpacing()
+nx, ny, _ = image.GetDimensions()
+heights = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(ny, nx)
+gi = np.rint((P[:, 0] - ox) / sx).astype(int)
+gj = np.rint((P[:, 1] - oy) / sy).astype(int)
+z_on = P[:, 2].copy()
+P[:, 2] = heights[gj, gi]
+mesh_off.GetPoints().SetData(numpy_to_vtk(P, deep=True))
+moved = np.count_nonzero(np.abs(z_on - P[:, 2]) > 1e-3)
+check(moved > 200, f"the filter's morphed mesh moves {moved} of {len(z_on)} vertices")
+mesh_plain = filter_mesh(False)
 
 win.Render()
 check(mapper.GetNumberOfRenderedTriangles() == mesh_on.GetNumberOfPolys(),
@@ -106,10 +122,60 @@ check(holes == 0 and np.count_nonzero(inside) > 0.5 * n,
       f"no background through the morphed terrain ({holes} of {np.count_nonzero(inside)} pixels)")
 check_within_tau(check, image, ren, actor, mapper, "morphed frame")
 
+# Along a flight: how far a morph factor may rise depends on the frames drawn before
+# (geomorphing's rise limit), in the mapper and in the filter alike. After the same eight
+# cameras and tau changes, one frame each, the mapper still draws the filter's morphed mesh,
+# which a fresh filter (no history) does not.
+flier = geomipmap.vtkGeoMipMapMapper()
+flier.SetInputData(image)
+flier.SetPixelError(TAU)
+flier.SetBlockSize(BLOCK)
+flier.ScalarVisibilityOff()
+flier_actor = vtkActor()
+flier_actor.SetMapper(flier)
+follower = geomipmap.vtkGeoMipMapFilter()
+follower.SetInputData(image)
+follower.SetViewportSize(W, H)
+follower.SetPixelError(TAU)
+follower.SetBlockSize(BLOCK)
+ren.RemoveAllViewProps()
+ren.AddActor(flier_actor)
+start = cam.GetPosition()
+for k in range(8):
+    # Half way, a coarser tau: the factors may then rise only a little per frame.
+    flier.SetPixelError(TAU if k < 4 else 1.5 * TAU)
+    follower.SetPixelError(flier.GetPixelError())
+    cam.SetPosition(start[0] + 12.0 * k, start[1] + 3.0 * k, start[2] - 2.0 * k)
+    win.Render()
+    follower.SetCamera(cam)
+    follower.Modified()
+    follower.Update()
+gpu_flight = refscene.depth(win)
+flown = vtkPolyData()
+flown.DeepCopy(follower.GetOutput())
+cpu_flight = depth_of(refscene.stock_actor(flown))
+seen = cpu_flight < 1.0
+flight_off = np.count_nonzero(np.abs(gpu_flight - cpu_flight)[seen] > eps)
+fresh = geomipmap.vtkGeoMipMapFilter()
+fresh.SetInputData(image)
+fresh.SetCamera(cam)
+fresh.SetViewportSize(W, H)
+fresh.SetPixelError(1.5 * TAU)
+fresh.SetBlockSize(BLOCK)
+fresh.Update()
+fresh_off = np.count_nonzero(np.abs(gpu_flight - depth_of(refscene.stock_actor(fresh.GetOutput())))[seen] > eps)
+check(np.count_nonzero(seen) > 0.3 * W * H and flight_off <= 0.002 * np.count_nonzero(seen),
+      f"after an 8-frame flight the mapper draws the filter's morphed mesh ({flight_off} of "
+      f"{np.count_nonzero(seen)} pixels differ in depth)")
+check(fresh_off > 20 * max(flight_off, 1),
+      f"... which a fresh filter's does not: {fresh_off} pixels differ (the rise limit's history)")
+cam.SetPosition(*start)
+
 mapper.GeomorphingOff()
 win.Render()
 gpu_plain = refscene.depth(win)
-plain_off = np.count_nonzero(np.abs(gpu_plain - cpu_off)[terrain] > eps)
+cpu_plain = depth_of(refscene.stock_actor(mesh_plain))
+plain_off = np.count_nonzero(np.abs(gpu_plain - cpu_plain)[terrain] > eps)
 print(f"geomorphing off: depth differs from the unmorphed mesh at {plain_off} pixels")
 check(plain_off <= 0.002 * n, f"geomorphing off draws the unmorphed mesh ({plain_off} pixels differ)")
 check_within_tau(check, image, ren, actor, mapper, "geomorphing off")

@@ -1,0 +1,110 @@
+#include "MorphRamp.h"
+
+#include "Morph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gmm
+{
+
+double rampSlope(double range)
+{
+  return 1.0 / std::log(range);
+}
+
+int morphChain(const Quadtree& qt, int b, MorphChain& chain)
+{
+  const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+  int count = 0;
+  for (int m = 0; m >= 0 && count < static_cast<int>(chain.size()); m = nextValidLevel(w, h, m))
+  {
+    chain[count++] = static_cast<int8_t>(m);
+  }
+  return count;
+}
+
+double rampPath(const double* error, int count, double budget, double range)
+{
+  if (count <= 0)
+  {
+    return 0.0;
+  }
+  // lambda_max at the budget itself (y = x): the coarsest link within the budget, and how
+  // far toward the next one the certificate allows.
+  int kMax = 0;
+  while (kMax + 1 < count && error[kMax + 1] <= budget)
+  {
+    ++kMax;
+  }
+  double lambda = kMax;
+  if (kMax + 1 < count)
+  {
+    lambda += std::max(0.0, budget - error[kMax]) / (error[kMax + 1] - error[kMax]);
+  }
+  // Smaller budgets y on each rising segment: h(y) = k + (y - E_k) / dE + s ln(x / y) is
+  // convex in y, lowest at y = s dE (clamped to the segment). Flat segments (equal errors)
+  // are jumps of lambda_max: their ends are the neighbouring segments' ends.
+  const double s = rampSlope(range);
+  const double tiny = std::numeric_limits<double>::min();
+  for (int k = 0; k + 1 < count && error[k] < budget; ++k)
+  {
+    const double dE = error[k + 1] - error[k];
+    if (!(dE > 0.0))
+    {
+      continue;
+    }
+    const double lo = std::max(error[k], tiny), hi = std::min(error[k + 1], budget);
+    const double y = std::min(std::max(s * dE, lo), hi);
+    lambda = std::min(lambda, k + (y - error[k]) / dE + s * std::log(budget / y));
+  }
+  return std::min(std::max(lambda, 0.0), static_cast<double>(count - 1));
+}
+
+int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor)
+{
+  const int k = std::min(std::max(static_cast<int>(lambda), 0), std::max(count - 1, 0));
+  factor = k + 1 < count ? static_cast<float>(std::min(std::max(lambda - k, 0.0), 1.0)) : 0.0f;
+  return count > 0 ? chain[k] : 0;
+}
+
+double rampedLambda(const ErrorTable& t, const Quadtree& qt, int b, double budget, double range)
+{
+  MorphChain chain;
+  const int links = morphChain(qt, b, chain);
+  std::array<double, 32> error{};
+  int count = 0;
+  while (count < links)
+  {
+    const double e = t.own(b, chain[count]);
+    if (!(e <= std::numeric_limits<double>::max()))
+    {
+      break; // not allowed (nodata): the chain ends
+    }
+    error[count++] = e;
+  }
+  return rampPath(error.data(), count, budget, range);
+}
+
+double rampedLambdaBeside(const ErrorTable& t, const Quadtree& qt, int b, int nb, int nbSide,
+  int nbLevel, double nbBudget, double range)
+{
+  MorphChain chain;
+  const int links = morphChain(qt, b, chain);
+  std::array<double, 32> error{};
+  int count = 0;
+  while (count < links)
+  {
+    const int v = chain[count];
+    const double e = v <= nbLevel ? 0.0 : t.strip(nb, nbSide, nbLevel, v);
+    if (!(e <= std::numeric_limits<double>::max()))
+    {
+      break;
+    }
+    error[count++] = e;
+  }
+  return rampPath(error.data(), count, nbBudget, range);
+}
+
+} // namespace gmm

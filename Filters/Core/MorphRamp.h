@@ -1,0 +1,84 @@
+// Geomorphing's path through a block's levels: a continuous level that moves at a bounded
+// rate as the camera moves, so that the morph from one level to the next is spread over a
+// range of distances instead of squeezed into the sliver where two levels' errors are close.
+//
+// Why: the largest morph factor that keeps the certificate (Morph.h) is t = (x - E_m) /
+// (E_m' - E_m) for a block at level m with error budget x = tau / f. It moves by
+// x / (E_m' - E_m) per unit of ln f, so where the next level's error E_m' is close to E_m
+// the whole morph happens within a step of the camera and the surface still pops; a
+// block that must refine at that point jumps from its coarse surface to a fine one.
+//
+// The path: with the block's levels as a chain v_0 = 0 < v_1 < ... (each the next valid
+// level, Morph.h's target), lambda_max(x) = k + (x - E_k) / (E_k+1 - E_k) on the segment
+// E_k <= x < E_k+1 is the furthest the certificate lets the block go. The drawn path is the
+// largest function below it whose slope in ln x is at most s = 1 / ln(range):
+//
+//   lambda(x) = min over y <= x of  lambda_max(y) + s ln(x / y)
+//
+// which moves by at most s per unit of ln x in either direction (a smaller budget only
+// removes candidates y; a larger one adds s ln(x'/x)) and needs no history: the mapper,
+// the filter and a replayed flight draw the same surface for the same camera. The block is
+// drawn at v_floor(lambda), morphing toward the next level by frac(lambda). lambda <=
+// lambda_max, so the level is never coarser than the coarsest within tau: the path only
+// costs triangles (blocks one level finer than needed where levels' errors are close).
+#pragma once
+
+#include "ErrorTable.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace gmm
+{
+
+// The default range: a level's morph spans at least this ratio of distances. Measured on
+// the popping benchmark (benchmarks.md, geomorphing).
+constexpr double kDefaultMorphRange = 3.0;
+
+// The path's slope: levels per unit of ln(distance), 1 / ln(range).
+double rampSlope(double range);
+
+// The rate limit on a drawn block's morph (Morph.h, computeMorph): from one frame to the
+// next its continuous level (chain index + factor) rises by at most rampSlope(range) per unit
+// of |ln f| change of its projection factor, plus this much per frame so that a still camera
+// still settles. A factor is otherwise free to jump up where a neighbour's level change lifts
+// a strip's cap on it; lowering a factor always keeps the certificate.
+constexpr double kMorphSettlePerFrame = 0.02;
+
+// The path's outcome for the blocks a frame selected, per block (stale for the others).
+struct MorphRamp
+{
+  double range = 0.0;          // input: > 1 follows the path, else plain coarsest-within-tau
+  std::vector<int8_t> level;   // the path's level (the selection may refine it further)
+  std::vector<float> factor;   // the path's morph factor toward the next level, in [0, 1]
+  std::vector<double> lambda;  // the path's continuous level (index into the block's chain)
+  bool active() const { return range > 1.0; }
+};
+
+// The levels block b morphs through, finest first: 0, then each next valid level
+// (Morph.h's targets). Returns how many.
+using MorphChain = std::array<int8_t, 32>;
+int morphChain(const Quadtree& qt, int b, MorphChain& chain);
+
+// lambda(budget) for the errors of a chain's levels (error[0..count), non-decreasing and
+// finite: a chain ends at its first level that is not allowed), in [0, count - 1].
+double rampPath(const double* error, int count, double budget, double range);
+
+// lambda of block b on the path of its own errors for error budget `budget` (stored-height
+// units).
+double rampedLambda(const ErrorTable& t, const Quadtree& qt, int b, double budget, double range);
+
+// lambda of block b on the path that keeps the strip of a finer neighbour `nb` (level
+// `nbLevel`, its side `nbSide` facing b) within that neighbour's budget as b coarsens: the
+// edge is sampled at b's level once that is coarser, so the neighbour's strip error is a
+// function of b's level (0 up to nbLevel). A coarse neighbour that the strip does not fit
+// is refined by fixStrips (SelectLevels.h) at once, which pops; this path gets there
+// smoothly instead.
+double rampedLambdaBeside(const ErrorTable& t, const Quadtree& qt, int b, int nb, int nbSide,
+  int nbLevel, double nbBudget, double range);
+
+// The level and factor of continuous level `lambda` on `chain` (count levels).
+int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor);
+
+} // namespace gmm

@@ -1,0 +1,234 @@
+// Geomorphing's level path (MorphRamp.h) and the morph rise limit (Morph.h).
+//
+// - PathByHand: chains worked out by hand from the definition.
+// - PathEqualsDefinition: rampPath against a brute-force minimum of its definition over a
+//   dense grid of budgets, on random chains (equal errors included).
+// - PathSlopeAndCertificate: the path never moves faster than 1 / ln(range) levels per unit
+//   of ln(budget) and never above the certificate's lambda_max.
+// - FlightCertifiedAndSmooth: slow flights with the path and the rise limit (what the mapper
+//   draws): every frame's morphed surface measures within tau by the independent measure,
+//   and the largest screen displacement between consecutive frames (popping, measured at
+//   every sample in view) is several times smaller than with the plain certificate factors.
+#include "CoreTestUtil.h"
+#include "Engine.h"
+#include "Morph.h"
+#include "MorphRamp.h"
+#include "SyntheticTerrain.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace gmmtest;
+
+namespace
+{
+// lambda_max of the definition: k + (x - E_k) / (E_k+1 - E_k) on E_k <= x < E_k+1.
+double lambdaMax(const std::vector<double>& e, double x)
+{
+  int k = 0;
+  while (k + 1 < static_cast<int>(e.size()) && e[k + 1] <= x)
+  {
+    ++k;
+  }
+  return k + 1 < static_cast<int>(e.size()) ? k + (x - e[k]) / (e[k + 1] - e[k]) : k;
+}
+
+// min over y <= x of lambda_max(y) + s ln(x / y), on a dense log grid of y plus the
+// segment ends (where lambda_max jumps).
+double lambdaBrute(const std::vector<double>& e, double x, double range)
+{
+  const double s = 1.0 / std::log(range);
+  double best = lambdaMax(e, x);
+  const double lo = std::max(1e-6 * x, 1e-12);
+  for (int k = 0; k <= 20000; ++k)
+  {
+    const double y = lo * std::pow(x / lo, k / 20000.0);
+    best = std::min(best, lambdaMax(e, y) + s * std::log(x / y));
+  }
+  for (double y : e)
+  {
+    if (y > 0.0 && y <= x)
+    {
+      best = std::min(best, lambdaMax(e, y) + s * std::log(x / y));
+      // just below a jump: the segment's upper end
+      const double below = y * (1.0 - 1e-12);
+      if (below > 0.0)
+      {
+        best = std::min(best, lambdaMax(e, below) + s * std::log(x / below));
+      }
+    }
+  }
+  return best;
+}
+
+std::vector<double> randomChain(Rng& rng)
+{
+  std::vector<double> e{ 0.0 };
+  const int n = randInt(rng, 2, 7);
+  for (int k = 1; k < n; ++k)
+  {
+    const int kind = randInt(rng, 0, 3);
+    const double prev = e.back() > 0.0 ? e.back() : randReal(rng, 0.1, 2.0);
+    e.push_back(kind == 0 ? e.back() : kind == 1 ? prev * randReal(rng, 1.0, 1.1) : prev * randReal(rng, 1.2, 4.0));
+  }
+  return e;
+}
+} // namespace
+
+TEST(MorphRamp, PathByHand)
+{
+  // Errors {0, 1}, range e (slope 1): h(y) = y + ln(x / y) falls on (0, 1], so the minimum
+  // over y <= x <= 1 is at y = x: lambda = x; above 1 the top level.
+  const double e2[] = { 0.0, 1.0 };
+  const double E = std::exp(1.0);
+  EXPECT_NEAR(gmm::rampPath(e2, 2, 0.25, E), 0.25, 1e-12);
+  EXPECT_NEAR(gmm::rampPath(e2, 2, 1.0, E), 1.0, 1e-12);
+  EXPECT_NEAR(gmm::rampPath(e2, 2, 7.0, E), 1.0, 1e-12);
+  // Errors {0, 1, 1.05, 4}: at x = 1.05 the certificate allows level index 2, but the path
+  // is still at 1 + ln(1.05): from y = 1 (index 1) it may rise by ln(1.05 / 1).
+  const double e4[] = { 0.0, 1.0, 1.05, 4.0 };
+  EXPECT_NEAR(gmm::rampPath(e4, 4, 1.05, E), 1.0 + std::log(1.05), 1e-12);
+  // At x = 2: index 2 + (2 - 1.05) / 2.95 allowed; from y = 1: 1 + ln 2 = 1.693 is lower.
+  EXPECT_NEAR(gmm::rampPath(e4, 4, 2.0, E), 1.0 + std::log(2.0), 1e-12);
+  // Range 1.5 on {0, 1}: slope s = 1 / ln 1.5 = 2.466 > 1, so the minimum of
+  // y + s ln(x / y) is at y = s when s < x, else at y = x: for x = 0.5, lambda = 0.5.
+  EXPECT_NEAR(gmm::rampPath(e2, 2, 0.5, 1.5), 0.5, 1e-12);
+  // A one-level chain never moves.
+  EXPECT_EQ(gmm::rampPath(e2, 1, 3.0, E), 0.0);
+}
+
+TEST(MorphRamp, PathEqualsDefinition)
+{
+  Rng rng(77);
+  double worst = 0.0;
+  for (int t = 0; t < 300; ++t)
+  {
+    const std::vector<double> e = randomChain(rng);
+    const double range = randReal(rng, 1.2, 5.0);
+    const double x = std::exp(randReal(rng, std::log(0.01), std::log(20.0)));
+    const double got = gmm::rampPath(e.data(), static_cast<int>(e.size()), x, range);
+    const double want = lambdaBrute(e, x, range);
+    worst = std::max(worst, std::fabs(got - want));
+    ASSERT_NEAR(got, want, 1e-6) << "chain of " << e.size() << ", x " << x << ", range " << range;
+    ASSERT_LE(got, want + 1e-12) << "the path is a minimum: the grid cannot find a lower value";
+  }
+  std::printf("[ ramp ] 300 random chains: worst |path - definition| %.2e\n", worst);
+}
+
+TEST(MorphRamp, PathSlopeAndCertificate)
+{
+  Rng rng(78);
+  for (int t = 0; t < 300; ++t)
+  {
+    const std::vector<double> e = randomChain(rng);
+    const int n = static_cast<int>(e.size());
+    const double range = randReal(rng, 1.2, 5.0), s = 1.0 / std::log(range);
+    double prevX = 0.0, prevL = 0.0;
+    for (int k = 0; k < 200; ++k)
+    {
+      const double x = 0.01 * std::pow(2000.0, k / 199.0);
+      const double l = gmm::rampPath(e.data(), n, x, range);
+      ASSERT_LE(l, lambdaMax(e, x) + 1e-12) << "above the certificate at x " << x;
+      ASSERT_GE(l, 0.0);
+      if (k > 0)
+      {
+        ASSERT_LE(std::fabs(l - prevL), s * std::log(x / prevX) + 1e-9) << "too steep at x " << x;
+      }
+      prevX = x;
+      prevL = l;
+    }
+  }
+}
+
+namespace
+{
+struct FlightOutcome
+{
+  double worstPop = 0.0;  // px, the largest frame-to-frame displacement of the drawn surface
+  double meanPop = 0.0;   // px, mean over frames of each frame's largest
+  double worstError = 0.0; // px, the largest measured screen error of a frame (morphed)
+  std::size_t triangles = 0;
+};
+
+// A slow, low flight over `hf` (as Testing/Benchmarks/measure_popping.py: 0.02 block a frame,
+// 250 m above the highest sample, 20 degrees down), drawn as the mapper draws it: engine
+// update, then computeMorph with the same cache every frame.
+FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double range, int frames)
+{
+  gmm::Engine e;
+  EXPECT_EQ(e.setHeightfield(input, block, 1), "");
+  e.setMorphRange(range);
+  const gmm::Heightfield& hf = e.heightfield();
+  const double top = *std::max_element(hf.z.begin(), hf.z.end());
+  const double ext = (hf.nx - 1) * hf.dx, pitch = 20.0 * 3.14159265358979323846 / 180.0;
+  gmm::MorphCache cache;
+  FlightOutcome out;
+  std::vector<double> prev;
+  for (int f = 0; f < frames; ++f)
+  {
+    gmm::View v;
+    v.eye = { 0.1 * ext + f * 0.02 * block * hf.dx, 0.5 * (hf.ny - 1) * hf.dy, top + 250.0 };
+    v.forward = { std::cos(pitch), 0.0, -std::sin(pitch) };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 50.0;
+    v.nearDistance = 1.0;
+    v.farDistance = 4.0 * ext;
+    e.update(v, tau);
+    EXPECT_EQ(e.lastError(), "");
+    gmm::MorphFrame mf;
+    gmm::computeMorph(hf, e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, mf, e.morphRamp());
+    std::vector<double> z(hf.sampleCount());
+    for (int j = 0; j < hf.ny; ++j)
+      for (int i = 0; i < hf.nx; ++i)
+        z[hf.index(i, j)] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), mf, i, j);
+    const ScreenMeasure m = measureScreenError(hf, e.indices(), &v, tau, MeasureTransform(), z.data());
+    EXPECT_EQ(m.violations, 0u) << "frame " << f << ": " << m.first;
+    EXPECT_EQ(m.uncovered, 0u) << m.first;
+    // The factors' own bound (a self-check; the measure above is the independent one).
+    EXPECT_LE(mf.maxBoundPixels, tau * (1 + 1e-9)) << "frame " << f;
+    out.worstError = std::max(out.worstError, m.maxDist);
+    out.triangles += e.stats().triangles;
+    const SurfaceSample s = sampleSurface(hf, e.indices(), z.data());
+    if (!prev.empty())
+    {
+      const MyCamera cam = makeCamera(v);
+      double worst = 0.0;
+      for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i)
+        {
+          const std::size_t k = hf.index(i, j);
+          const double x = hf.worldX(i), y = hf.worldY(j);
+          double px, py, qx, qy;
+          if (std::isnan(s.z[k]) || std::isnan(prev[k]) || !insideFrustum(cam, x, y, hf.z[k]) ||
+            project(cam, x, y, s.z[k], px, py) < cam.nearD || project(cam, x, y, prev[k], qx, qy) < cam.nearD)
+            continue;
+          worst = std::max(worst, std::hypot(px - qx, py - qy));
+        }
+      out.worstPop = std::max(out.worstPop, worst);
+      out.meanPop += worst / (frames - 1);
+    }
+    prev = s.z;
+  }
+  out.triangles /= frames;
+  return out;
+}
+} // namespace
+
+TEST(MorphRamp, FlightCertifiedAndSmooth)
+{
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(513, 513, 30.0, 1, 1500.0, 1);
+  const double tau = 2.0;
+  const FlightOutcome plain = fly(hf, 32, tau, 0.0, 80);
+  const FlightOutcome path = fly(hf, 32, tau, gmm::kDefaultMorphRange, 80);
+  std::printf("[ ramp ] 513^2, block 32, tau 2, 80 frames: worst pop %.3f px (plain certificate "
+              "factors %.3f), mean of frame worst %.3f (%.3f); measured error %.3f (%.3f) px; "
+              "triangles %zu (%zu)\n",
+    path.worstPop, plain.worstPop, path.meanPop, plain.meanPop, path.worstError, plain.worstError,
+    path.triangles, plain.triangles);
+  EXPECT_LE(path.worstPop, 0.55);
+  EXPECT_LE(path.worstPop, 0.5 * plain.worstPop);
+  EXPECT_LE(path.meanPop, 0.6 * plain.meanPop);
+  EXPECT_GE(path.triangles, plain.triangles); // the path is never coarser than needed
+}
