@@ -1,7 +1,8 @@
 """Popping along a slow flight, geomorphing on against off, in one run.
 
     /usr/bin/python3 measure_popping.py [--dem FILE.png --spacing M --zscale S] [--n 1025]
-        [--tau 2] [--frames 120] [--step 0.02] [--block 64] [--size 1280x720] [--quick]
+        [--tau 2] [--frames 120] [--step 0.02] [--block 64] [--size 1280x720] [--range R]
+        [--quick]
 
 The terrain: a 16-bit PNG DEM (e.g. ../shared/data/ps_height_1k.png, --spacing 160
 --zscale 0.1) or, by default, vtkGeoMipMapFractalSource (n x n, 30 m, seed 1). The camera
@@ -100,6 +101,8 @@ def main(argv):
         filt.SetPixelError(tau)
         filt.SetViewportSize(w, h)
         filt.SetGeomorphing(mode == "on")
+        if "--range" in argv:
+            filt.SetGeomorphRange(arg(argv, "--range", 3.0))
         prev = None
         pops, p99s, errors, times, tris = [], [], [], [], []
         for f in range(frames):
@@ -149,6 +152,8 @@ def main(argv):
             mapper.SetBlockSize(block)
             mapper.SetPixelError(tau)
             mapper.SetGeomorphing(mode == "on")
+            if "--range" in argv:
+                mapper.SetGeomorphRange(arg(argv, "--range", 3.0))
             actor = vtkActor()
             actor.SetMapper(mapper)
             ren = vtkRenderer()
