@@ -220,8 +220,9 @@ public:
    * its morph factor never rises faster than that from one frame to the next, so that no
    * frame pops where two levels' errors are close or a neighbour's switch frees a block.
    * Larger is smoother and draws more triangles (blocks stay finer than PixelError needs
-   * near their switches: +13 % on the Puget Sound flight, +55 % on a rough fractal at the
-   * default; Documentation/benchmarks.md, "Geomorphing"). 1 or less selects the coarsest
+   * near their switches: +13 % on the Puget Sound flight, +55 % on a rough fractal and
+   * +153 % on a wide 4097^2 orbit at tau 1 at the default; about +15 % at 2;
+   * Documentation/benchmarks.md). 1 or less selects the coarsest
    * levels within PixelError and morphs each block as far as its certificate allows. The
    * certificate holds at any range.
    */
@@ -296,11 +297,10 @@ public:
    * Instrumentation: when on, each draw counts the samples that pass the depth test
    * (GL_SAMPLES_PASSED; waits for the result), i.e. the fragments shaded when the
    * fragment shader runs after an early depth test. For measuring FrontToBack.
-   * Known defect: on Debian 12's Mesa llvmpipe, counting while FrontToBack draws sorted
-   * slots (glMultiDrawElements, or one glDrawElements per block) corrupts the process
-   * heap after about 100 frames (abort in malloc); counting with block order, and
-   * FrontToBack without counting, run clean. Cause not found: use it for short
-   * measurements only.
+   * A heap corruption seen once with counting and FrontToBack together (Debian 12's
+   * llvmpipe, before merged nodes joined the draw order) no longer reproduces: 120 frames
+   * of Puget Sound in both orders run clean (Documentation/benchmarks.md, issue #14). Its
+   * cause was not identified.
    */
   vtkSetMacro(CountFragments, bool);
   vtkGetMacro(CountFragments, bool);

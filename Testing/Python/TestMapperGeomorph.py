@@ -26,14 +26,31 @@ check = refscene.Checks()
 
 image = refscene.fractal_image(257, 257, seed=5)
 
-mapper = geomipmap.vtkGeoMipMapMapper()
-mapper.SetInputData(image)
-mapper.SetPixelError(TAU)
-mapper.SetBlockSize(BLOCK)
-mapper.ScalarVisibilityOff()
+
+def new_mapper():
+    m = geomipmap.vtkGeoMipMapMapper()
+    m.SetInputData(image)
+    m.SetPixelError(TAU)
+    m.SetBlockSize(BLOCK)
+    m.ScalarVisibilityOff()
+    a = vtkActor()
+    a.SetMapper(m)
+    return m, a
+
+
+def new_filter(tau, camera=None):
+    f = geomipmap.vtkGeoMipMapFilter()
+    f.SetInputData(image)
+    f.SetViewportSize(W, H)
+    f.SetPixelError(tau)
+    f.SetBlockSize(BLOCK)
+    if camera is not None:
+        f.SetCamera(camera)
+    return f
+
+
+mapper, actor = new_mapper()
 check(mapper.GetGeomorphing(), "geomorphing is on by default")
-actor = vtkActor()
-actor.SetMapper(mapper)
 ren = vtkRenderer()
 ren.SetBackground(0.0, 0.0, 0.0)
 ren.AddActor(actor)
@@ -49,12 +66,7 @@ ren.ResetCameraClippingRange(x0, x1, y0, y1, z0, z1)
 
 
 def filter_mesh(morph):
-    f = geomipmap.vtkGeoMipMapFilter()
-    f.SetInputData(image)
-    f.SetCamera(cam)
-    f.SetViewportSize(W, H)
-    f.SetPixelError(TAU)
-    f.SetBlockSize(BLOCK)
+    f = new_filter(TAU, cam)
     f.SetGeomorphing(morph)
     f.Update()
     return f.GetOutput()
@@ -126,18 +138,8 @@ check_within_tau(check, image, ren, actor, mapper, "morphed frame")
 # (geomorphing's rise limit), in the mapper and in the filter alike. After the same eight
 # cameras and tau changes, one frame each, the mapper still draws the filter's morphed mesh,
 # which a fresh filter (no history) does not.
-flier = geomipmap.vtkGeoMipMapMapper()
-flier.SetInputData(image)
-flier.SetPixelError(TAU)
-flier.SetBlockSize(BLOCK)
-flier.ScalarVisibilityOff()
-flier_actor = vtkActor()
-flier_actor.SetMapper(flier)
-follower = geomipmap.vtkGeoMipMapFilter()
-follower.SetInputData(image)
-follower.SetViewportSize(W, H)
-follower.SetPixelError(TAU)
-follower.SetBlockSize(BLOCK)
+flier, flier_actor = new_mapper()
+follower = new_filter(TAU)
 ren.RemoveAllViewProps()
 ren.AddActor(flier_actor)
 start = cam.GetPosition()
@@ -156,12 +158,7 @@ flown.DeepCopy(follower.GetOutput())
 cpu_flight = depth_of(refscene.stock_actor(flown))
 seen = cpu_flight < 1.0
 flight_off = np.count_nonzero(np.abs(gpu_flight - cpu_flight)[seen] > eps)
-fresh = geomipmap.vtkGeoMipMapFilter()
-fresh.SetInputData(image)
-fresh.SetCamera(cam)
-fresh.SetViewportSize(W, H)
-fresh.SetPixelError(1.5 * TAU)
-fresh.SetBlockSize(BLOCK)
+fresh = new_filter(1.5 * TAU, cam)
 fresh.Update()
 fresh_off = np.count_nonzero(np.abs(gpu_flight - depth_of(refscene.stock_actor(fresh.GetOutput())))[seen] > eps)
 check(np.count_nonzero(seen) > 0.3 * W * H and flight_off <= 0.002 * np.count_nonzero(seen),
