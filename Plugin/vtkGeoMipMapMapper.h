@@ -238,8 +238,8 @@ public:
    * (gmm::Engine::update with a budget): MaximumScreenSpaceError is then the smallest
    * certified error the budget allows. If even the coarsest selection (every visible block
    * one quad) exceeds it, that selection is drawn and GetOverTriangleBudget() is true.
-   * Budgeted frames select block by block (no merged nodes). Negative values are refused
-   * with an error.
+   * Budgeted frames use merged nodes as tau-driven ones do (Documentation/design.md,
+   * "Triangle budgets"). Negative values are refused with an error.
    */
   void SetTriangleBudget(vtkIdType budget);
   vtkGetMacro(TriangleBudget, vtkIdType);

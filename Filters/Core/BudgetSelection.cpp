@@ -15,13 +15,8 @@ namespace gmm
 namespace
 {
 
-// Phase 1 bisects tau in log space between max(tau, kLowestTau) and the coarsest
-// selection's tau (which a block next to the eye can make 1e8 px or more), until the two
-// are within kTauPrecision, in at most kBisections steps (24 halve a ratio of 1e20 to
-// within 3e-6 in log: 0.0003 %).
-constexpr double kLowestTau = 1e-6; // pixels: below it, a selection is exact in practice
-constexpr double kTauPrecision = 1e-4;
-constexpr int kBisections = 24;
+// Phase 1's upper bound here is the coarsest selection's tau (which a block next to the eye
+// can make 1e8 px or more); the constants are in BudgetSelection.h.
 
 using Entry = BudgetScratch::Entry;
 
@@ -103,6 +98,11 @@ int blockToRefine(const Quadtree& qt, const ErrorTable& t, std::vector<int8_t>& 
       worst = t.strip(b, s, m, cfg.edgeLevel[s]);
       side = s;
     }
+  }
+  if (side >= 0 && levels[nb[side]] == kCoveredLevel)
+  {
+    // The edge is a merged node's perimeter: only b's own level can change here.
+    return m > 0 ? b : nb[side];
   }
   if (side < 0 || m == 0)
   {
@@ -225,7 +225,7 @@ void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::ve
     levels.swap(s.trial);
     return;
   }
-  for (int k = 0; k < kBisections && hi > lo * (1.0 + kTauPrecision); ++k)
+  for (int k = 0; k < kBudgetBisections && hi > lo * (1.0 + kBudgetTauPrecision); ++k)
   {
     const double mid = std::sqrt(lo * hi);
     selectLevels(qt, table, visible, factor, mid, s.trial, s.select);
@@ -275,15 +275,28 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
   }
   if (std::isfinite(coarsestTau) && coarsestTau > tau)
   {
-    const double lo = std::max(tau, kLowestTau);
+    const double lo = std::max(tau, kLowestBudgetTau);
     bestTauSelection(qt, table, visible, factor, lo, coarsestTau, triangleBudget, levels, scratch);
   }
 
-  // Phase 2: refine the largest projected error while the budget lasts.
+  refineWithinBudget(qt, table, visible, factor, tau, triangleBudget, 0, 0.0, levels, scratch, outcome);
+}
+
+void refineWithinBudget(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& drawn,
+  const std::vector<double>& factor, double tau, std::size_t triangleBudget,
+  std::size_t fixedTriangles, double fixedError, std::vector<int8_t>& levels,
+  BudgetScratch& scratch, BudgetOutcome& outcome)
+{
+  if (scratch.stamp.size() != levels.size())
+  {
+    scratch.stamp.assign(levels.size(), 0);
+    scratch.count.assign(levels.size(), 0);
+  }
+  // Refine the largest projected error while the budget lasts.
   Refiner refiner(qt, table, factor, levels, scratch);
-  std::size_t total = selectionTriangles(qt, visible, levels, &scratch.count);
+  std::size_t total = fixedTriangles + selectionTriangles(qt, drawn, levels, &scratch.count);
   scratch.heap.clear();
-  for (int b : visible)
+  for (int b : drawn)
   {
     if (levels[b] >= 0)
     {
@@ -297,6 +310,7 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
   double best = std::numeric_limits<double>::infinity();
   std::size_t bestSteps = 0, bestTotal = total;
   std::vector<Entry>& heap = scratch.heap;
+  outcome.stop = fixedError > tau ? BudgetStop::Merged : BudgetStop::Tau;
   while (!heap.empty())
   {
     const Entry top = heap.front();
@@ -306,18 +320,30 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
     {
       continue; // superseded by a later entry for the same block
     }
-    if (top.error < best) // the current largest error: every block has a fresh entry
+    // The current largest error: every block has a fresh entry; the merged nodes' is fixed.
+    const double largest = std::max(top.error, fixedError);
+    if (largest < best)
     {
-      best = top.error;
+      best = largest;
       bestSteps = log.size();
       bestTotal = total;
     }
     if (top.error <= tau || top.error == 0.0)
     {
-      outcome.stop = BudgetStop::Tau;
+      outcome.stop = fixedError > tau ? BudgetStop::Merged : BudgetStop::Tau;
+      break;
+    }
+    if (top.error <= fixedError)
+    {
+      outcome.stop = BudgetStop::Merged; // no block refinement lowers the largest error
       break;
     }
     const int x = blockToRefine(qt, table, levels, top.block);
+    if (levels[x] == kCoveredLevel)
+    {
+      outcome.stop = BudgetStop::Merged; // a strip beside a merged node, at level 0
+      break;
+    }
     if (levels[x] <= 0)
     {
       // Unreachable: a positive error is a level > 0's own error or a strip to a neighbour

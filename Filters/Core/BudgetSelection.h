@@ -18,15 +18,15 @@
 // (by up to 45 %), because strip errors are not monotone in a block's own level and a
 // local choice cannot see that; phase 1 gives the greedy a start that is already as good.
 //
-// The drawn nodes are today the quadtree's leaf blocks (each a level plus four side strips
-// stitched to its neighbours' edge levels). A node's certified error is blockCertifiedError
+// Phase 2 refines the quadtree's leaf blocks (each a level plus four side strips stitched
+// to its neighbours' edge levels). A node's certified error is blockCertifiedError
 // times its projection factor: its own error at its level and the error of every strip
 // joined to a coarser neighbour. Refining a node whose error is its own lowers its level;
 // refining one whose error is a strip lowers the level of the neighbour across that strip
-// (the only way to shrink a strip, as fixStrips does for tau). The engine's merged nodes
-// (SelectNodes.h) are not used in budgeted frames yet: they would join the same loop as
-// entries whose refinement splits them, and phase 1 would bisect the hierarchical
-// selection.
+// (the only way to shrink a strip, as fixStrips does for tau). With merged nodes
+// (SelectNodes.h; the engine's default), phase 1 bisects the hierarchical selection
+// instead (Engine::update) and phase 2 refines its blocks, leaving the merged nodes as
+// they are: it stops when the largest error is a node's or a strip beside one (Merged).
 #pragma once
 
 #include "ErrorTable.h"
@@ -40,12 +40,21 @@
 namespace gmm
 {
 
+// Phase 1 bisects tau in log space from max(tau, kLowestBudgetTau) up, until the bounds are
+// within kBudgetTauPrecision, in at most kBudgetBisections steps (24 halve a ratio of 1e20
+// to within 3e-6 in log: 0.0003 %). With merged nodes a sweep comes first (Engine::update).
+constexpr double kLowestBudgetTau = 1e-6; // pixels: below it, a selection is exact in practice
+constexpr double kBudgetTauPrecision = 1e-4;
+constexpr int kBudgetBisections = 40;
+
 // Why refinement stopped.
 enum class BudgetStop
 {
   Tau,       // the largest projected error is within tau (or 0): the budget was not binding
   Budget,    // the next refinement would exceed the triangle budget
-  OverBudget // the coarsest selection alone exceeds the budget; it is drawn nonetheless
+  OverBudget, // the coarsest selection alone exceeds the budget; it is drawn nonetheless
+  Merged     // the largest error is a merged node's, or a strip beside one: only splitting
+             // the node would lower it, which refinement does not do
 };
 
 struct BudgetOutcome
@@ -87,5 +96,14 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
   const std::vector<int>& visible, const std::vector<double>& factor, double tau,
   std::size_t triangleBudget, std::vector<int8_t>& levels, BudgetScratch& scratch,
   BudgetOutcome& outcome);
+
+// Phase 2 alone, on a selection made elsewhere: `drawn` lists the blocks that may have a
+// level >= 0 (kCoveredLevel blocks belong to merged nodes, which stay); `fixedTriangles`
+// and `fixedError` (pixels) are the merged nodes' triangles and largest projected error.
+// outcome.triangles includes fixedTriangles.
+void refineWithinBudget(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& drawn,
+  const std::vector<double>& factor, double tau, std::size_t triangleBudget,
+  std::size_t fixedTriangles, double fixedError, std::vector<int8_t>& levels,
+  BudgetScratch& scratch, BudgetOutcome& outcome);
 
 } // namespace gmm

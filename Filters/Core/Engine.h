@@ -64,12 +64,12 @@ public:
   // that sees no block (e.g. a far plane short of the terrain) is not an error.
   const FrameStats& update(const View& view, double tau);
 
-  // The same frame within at most `triangleBudget` triangles (BudgetSelection.h): refines
-  // the drawn block with the largest projected error until the budget or tau stops it, so
-  // maxScreenError is the smallest certified error the budget allows. 0 = no budget,
-  // exactly update(view, tau). If even the coarsest selection exceeds the budget it is
-  // drawn and stats().overBudget says so. Budgeted frames select block by block: merged
-  // nodes are not used (the refinement works on leaf blocks).
+  // The same frame within at most `triangleBudget` triangles (BudgetSelection.h): the
+  // finest tau-driven selection that fits (with merged nodes when they are on), then
+  // refinement of the drawn block with the largest projected error until the budget or tau
+  // stops it, so maxScreenError is the smallest certified error the budget allows. 0 = no
+  // budget, exactly update(view, tau). If even the coarsest selection exceeds the budget
+  // it is drawn and stats().overBudget says so.
   const FrameStats& update(const View& view, double tau, std::size_t triangleBudget);
 
   // Vertical exaggeration: the drawn surface is z0 + scale * height. Culling, the bound and
@@ -142,6 +142,15 @@ private:
   // The merged nodes' part of finishFrame: their slots in the arena and statistics.
   bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
     FrameStats& s);
+  // Budgeted frames with merged nodes: phase 1 of BudgetSelection.h on the hierarchical
+  // selection, then refineWithinBudget on its blocks. False (nothing selected) when even
+  // the coarsest hierarchical selection is over the budget.
+  bool selectHierarchicallyWithinBudget(
+    const View& view, double tau, std::size_t triangleBudget, BudgetOutcome& outcome);
+  // Triangles and largest projected certified error (pixels) of the current hierarchical
+  // selection (blocks and merged nodes).
+  std::size_t hierarchicalTriangles() const;
+  double hierarchicalError() const;
   // Hierarchical selection for update (frustum and projector given) or updateForError.
   void selectHierarchically(const Frustum* frustum, const std::function<double(const Box&)>& factorOf,
     double tau, MorphRamp* ramp = nullptr);
@@ -150,6 +159,14 @@ private:
   std::shared_ptr<const Terrain> terrain_ = std::make_shared<const Terrain>();
   ErrorMetric metric_ = ErrorMetric::Certified;
   bool mergedNodes_ = true;
+  struct HierarchicalSelection
+  {
+    std::vector<int8_t> levels;
+    std::vector<double> factor;
+    std::vector<int> blocks, merged;
+    std::vector<double> mergedFactor;
+  };
+  HierarchicalSelection budgetBest_; // the best fitting selection of a budgeted frame
   MorphRamp ramp_;
   bool rampCurrent_ = false;
   NodeSelection nodeSelection_;

@@ -40,4 +40,10 @@ std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig&
   return n;
 }
 
+std::size_t mergedNodeTriangleCount(const Quadtree& qt, int node)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  return 2 * static_cast<std::size_t>((n.colEnd - n.colBegin) + (n.rowEnd - n.rowBegin));
+}
+
 } // namespace gmm

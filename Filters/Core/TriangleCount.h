@@ -17,4 +17,8 @@ namespace gmm
 // Levels.h; an invalid one draws nothing and counts 0).
 std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig& config);
 
+// Triangles of a merged node's fan (Tessellate.h, emitMergedNode): one per perimeter
+// point, i.e. 2 x (block columns + block rows) below the node.
+std::size_t mergedNodeTriangleCount(const Quadtree& qt, int node);
+
 } // namespace gmm
