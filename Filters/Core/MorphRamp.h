@@ -16,8 +16,9 @@
 //   lambda(x) = min over y <= x of  lambda_max(y) + s ln(x / y)
 //
 // which moves by at most s per unit of ln x in either direction (a smaller budget only
-// removes candidates y; a larger one adds s ln(x'/x)) and needs no history: the mapper,
-// the filter and a replayed flight draw the same surface for the same camera. The block is
+// removes candidates y; a larger one adds s ln(x'/x)) and needs no history: the levels,
+// hence the triangles, are a function of the camera (only the rise limit below remembers
+// the last frame's morph factors). The block is
 // drawn at v_floor(lambda), morphing toward the next level by frac(lambda). lambda <=
 // lambda_max, so the level is never coarser than the coarsest within tau: the path only
 // costs triangles (blocks one level finer than needed where levels' errors are close).
@@ -72,7 +73,7 @@ double rampedLambda(const ErrorTable& t, const Quadtree& qt, int b, double budge
 // lambda of block b on the path that keeps the strip of a finer neighbour `nb` (level
 // `nbLevel`, its side `nbSide` facing b) within that neighbour's budget as b coarsens: the
 // edge is sampled at b's level once that is coarser, so the neighbour's strip error is a
-// function of b's level (0 up to nbLevel). A coarse neighbour that the strip does not fit
+// function of b's level (0 while b's level is at most nbLevel). A coarse neighbour that the strip does not fit
 // is refined by fixStrips (SelectLevels.h) at once, which pops; this path gets there
 // smoothly instead.
 double rampedLambdaBeside(const ErrorTable& t, const Quadtree& qt, int b, int nb, int nbSide,
