@@ -8,6 +8,7 @@
 #include "Engine.h"
 #include "FuzzEngineChecks.h"
 #include "Levels.h"
+#include "Morph.h"
 
 #include <fuzzer/FuzzedDataProvider.h>
 
@@ -136,6 +137,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   if (!err.empty())
     return 0;
   const int frames = in.ConsumeIntegralInRange<int>(1, 6);
+  gmm::MorphCache morphCache;
+  gmm::MorphFrame morph;
   for (int f = 0; f < frames; ++f)
   {
     switch (in.ConsumeIntegralInRange<int>(0, 2))
@@ -153,7 +156,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       {
         const gmm::View v = makeView(in, e.heightfield());
         const double tau = in.ConsumeIntegralInRange<int>(1, 400) * 0.05;
-        e.update(v, tau);
+        // Geomorphing's level path (any range, none included), merged nodes on or off, and
+        // now and then a triangle budget (budgeted frames never follow the path).
+        e.setMorphRange(in.ConsumeIntegralInRange<int>(0, 4) * 0.75);
+        e.setMergedNodes(in.ConsumeIntegralInRange<int>(0, 3) != 0);
+        const std::size_t budget = in.ConsumeIntegralInRange<int>(0, 3) == 0
+          ? static_cast<std::size_t>(in.ConsumeIntegralInRange<int>(1, 20000))
+          : 0;
+        e.update(v, tau, budget);
         if (!e.lastError().empty())
         {
           if (!e.indices().empty() || e.stats().triangles != 0)
@@ -161,6 +171,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
           break;
         }
         checkFrame(e, hasNodata, maxQ, true);
+        // Morph factors (with the path and the rise limit across frames): the morphed
+        // surface's bound stays within tau in a tau-driven frame.
+        gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau,
+          morphCache, morph, e.morphRamp());
+        if (budget == 0 && !(morph.maxBoundPixels <= tau * (1 + 1e-9)))
+          violation("morph bound " + std::to_string(morph.maxBoundPixels) + " px over tau", hf, maxQ);
         break;
       }
       default:
