@@ -125,17 +125,6 @@ std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int c, int 
 }
 } // namespace
 
-int chainIndex(const Quadtree& qt, int block, int level)
-{
-  const int w = qt.blockWidth(block), h = qt.blockHeight(block);
-  int k = 0;
-  for (int m = 0; m >= 0 && m < level; m = nextValidLevel(w, h, m))
-  {
-    ++k;
-  }
-  return k;
-}
-
 int nextValidLevel(int widthQuads, int heightQuads, int m)
 {
   const int top = topLevel(widthQuads, heightQuads);
@@ -338,9 +327,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
     out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
   }
+  // History for the next frame's rise limit (none from a frame without the path).
   for (int b = 0; b < blocks; ++b)
   {
-    const bool drawn = levels[b] >= 0 && b < static_cast<int>(factor.size());
+    const bool drawn = limited && levels[b] >= 0 && b < static_cast<int>(factor.size());
     cache.lastLambda[b] = drawn ? chainIndex(qt, b, levels[b]) + out.blockT[b] : -1.0;
     cache.lastFactor[b] = drawn ? factor[b] : 0.0;
   }

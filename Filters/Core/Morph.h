@@ -67,9 +67,6 @@ struct MorphFrame
 // The next valid level above m for a w x h block (Levels.h), or -1 when m is its top level.
 int nextValidLevel(int widthQuads, int heightQuads, int m);
 
-// Position of valid level `level` on the block's chain 0, nextValidLevel(0), ...
-int chainIndex(const Quadtree& qt, int block, int level);
-
 // Per-block part errors of the configuration each block was last seen with, so that a frame
 // computes them only for blocks whose configuration or targets changed. One per engine.
 struct MorphCache

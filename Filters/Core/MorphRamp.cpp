@@ -69,15 +69,18 @@ int levelOnChain(const MorphChain& chain, int count, double lambda, float& facto
   return count > 0 ? chain[k] : 0;
 }
 
-double rampedLambda(const ErrorTable& t, const Quadtree& qt, int b, double budget, double range)
+namespace
 {
-  MorphChain chain;
-  const int links = morphChain(qt, b, chain);
+// rampPath over the chain's errors errorOf(level), which end at the first level that is not
+// allowed (+inf).
+template <typename ErrorOf>
+double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double range)
+{
   std::array<double, 32> error{};
   int count = 0;
   while (count < links)
   {
-    const double e = t.own(b, chain[count]);
+    const double e = errorOf(chain[count]);
     if (!(e <= std::numeric_limits<double>::max()))
     {
       break; // not allowed (nodata): the chain ends
@@ -86,25 +89,32 @@ double rampedLambda(const ErrorTable& t, const Quadtree& qt, int b, double budge
   }
   return rampPath(error.data(), count, budget, range);
 }
+} // namespace
 
-double rampedLambdaBeside(const ErrorTable& t, const Quadtree& qt, int b, int nb, int nbSide,
-  int nbLevel, double nbBudget, double range)
+int chainIndex(const Quadtree& qt, int block, int level)
 {
   MorphChain chain;
-  const int links = morphChain(qt, b, chain);
-  std::array<double, 32> error{};
-  int count = 0;
-  while (count < links)
+  const int links = morphChain(qt, block, chain);
+  int k = 0;
+  while (k + 1 < links && chain[k] < level)
   {
-    const int v = chain[count];
-    const double e = v <= nbLevel ? 0.0 : t.strip(nb, nbSide, nbLevel, v);
-    if (!(e <= std::numeric_limits<double>::max()))
-    {
-      break;
-    }
-    error[count++] = e;
+    ++k;
   }
-  return rampPath(error.data(), count, nbBudget, range);
+  return k;
+}
+
+double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,
+  double range)
+{
+  return pathOverChain(chain, links, [&](int m) { return double(t.own(b, m)); }, budget, range);
+}
+
+double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,
+  int nbSide, int nbLevel, double nbBudget, double range)
+{
+  return pathOverChain(chain, links,
+    [&](int v) { return v <= nbLevel ? 0.0 : double(t.strip(nb, nbSide, nbLevel, v)); }, nbBudget,
+    range);
 }
 
 } // namespace gmm

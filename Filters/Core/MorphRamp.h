@@ -66,18 +66,23 @@ int morphChain(const Quadtree& qt, int b, MorphChain& chain);
 // finite: a chain ends at its first level that is not allowed), in [0, count - 1].
 double rampPath(const double* error, int count, double budget, double range);
 
-// lambda of block b on the path of its own errors for error budget `budget` (stored-height
-// units).
-double rampedLambda(const ErrorTable& t, const Quadtree& qt, int b, double budget, double range);
+// Position of valid level `level` on the block's chain (the computeMorph rise limit's
+// continuous level is this plus the factor).
+int chainIndex(const Quadtree& qt, int block, int level);
 
-// lambda of block b on the path that keeps the strip of a finer neighbour `nb` (level
+// lambda of block b (its chain from morphChain) on the path of its own errors for error
+// budget `budget` (stored-height units).
+double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,
+  double range);
+
+// lambda of block b (its chain) on the path that keeps the strip of a finer neighbour `nb` (level
 // `nbLevel`, its side `nbSide` facing b) within that neighbour's budget as b coarsens: the
 // edge is sampled at b's level once that is coarser, so the neighbour's strip error is a
 // function of b's level (0 while b's level is at most nbLevel). A coarse neighbour that the strip does not fit
 // is refined by fixStrips (SelectLevels.h) at once, which pops; this path gets there
 // smoothly instead.
-double rampedLambdaBeside(const ErrorTable& t, const Quadtree& qt, int b, int nb, int nbSide,
-  int nbLevel, double nbBudget, double range);
+double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,
+  int nbSide, int nbLevel, double nbBudget, double range);
 
 // The level and factor of continuous level `lambda` on `chain` (count levels).
 int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor);

@@ -90,7 +90,7 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
   }
   MorphChain chain;
   const int links = morphChain(qt, b, chain);
-  const double lambda = rampedLambda(t, qt, b, budget, ramp->range);
+  const double lambda = rampedLambda(t, b, chain, links, budget, ramp->range);
   float factor = 0.0f;
   const int m = levelOnChain(chain, links, lambda, factor);
   ramp->lambda[b] = lambda;
@@ -113,6 +113,8 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
     const int c = b % qt.blockCols, r = b / qt.blockCols;
     const int neighbour[4] = { b - qt.blockCols, b + 1, b + qt.blockCols, b - 1 };
     const bool exists[4] = { r > 0, c + 1 < qt.blockCols, r + 1 < qt.blockRows, c > 0 };
+    MorphChain chain;
+    const int links = morphChain(qt, b, chain);
     double lambda = ramp.lambda[b];
     for (int side = 0; side < 4; ++side)
     {
@@ -122,13 +124,11 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
       {
         continue; // no strip of the neighbour joins this edge
       }
-      lambda = std::min(lambda,
-        rampedLambdaBeside(t, qt, b, nb, (side + 2) % 4, nbLevel, budget[nb], ramp.range));
+      lambda = std::min(lambda, rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, nbLevel,
+                                  budget[nb], ramp.range));
     }
     if (lambda < ramp.lambda[b])
     {
-      MorphChain chain;
-      const int links = morphChain(qt, b, chain);
       float factor = 0.0f;
       levels[b] = static_cast<int8_t>(levelOnChain(chain, links, lambda, factor));
       ramp.lambda[b] = lambda;
