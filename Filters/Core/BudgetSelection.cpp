@@ -6,6 +6,7 @@
 #include "TriangleCount.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -58,16 +59,6 @@ int nextFiner(const ErrorTable& t, int b, int m)
   return 0;
 }
 
-// Neighbours across South, East, North, West; -1 where there is none.
-void neighboursOf(const Quadtree& qt, int b, int (&nb)[4])
-{
-  const int c = b % qt.blockCols, r = b / qt.blockCols;
-  nb[South] = r > 0 ? b - qt.blockCols : -1;
-  nb[East] = c + 1 < qt.blockCols ? b + 1 : -1;
-  nb[North] = r + 1 < qt.blockRows ? b + qt.blockCols : -1;
-  nb[West] = c > 0 ? b - 1 : -1;
-}
-
 double projectedError(const Quadtree& qt, const ErrorTable& t, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, int b)
 {
@@ -87,8 +78,7 @@ int blockToRefine(const Quadtree& qt, const ErrorTable& t, std::vector<int8_t>& 
     return b; // no strips: only its own error
   }
   const BlockConfig cfg = blockConfigOf(qt, levels, b);
-  int nb[4];
-  neighboursOf(qt, b, nb);
+  const std::array<int, 4> nb = qt.blockNeighbours(b);
   double worst = t.ownExact(b, m);
   int side = -1;
   for (int s = 0; s < 4; ++s)
@@ -148,8 +138,7 @@ public:
   // the counts and requeues x and its drawn neighbours (their strips changed).
   bool refine(int x, std::size_t budget, std::size_t& total)
   {
-    int nb[4];
-    neighboursOf(qt_, x, nb);
+    const std::array<int, 4> nb = qt_.blockNeighbours(x);
     int touched[5] = { x, -1, -1, -1, -1 };
     int n = 1;
     for (int k : nb)

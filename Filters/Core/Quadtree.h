@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,6 +59,14 @@ struct Quadtree
   {
     const int r = block / blockCols;
     return rowStart[r + 1] - rowStart[r];
+  }
+  // The blocks across the South, East, North and West sides of `block` (Tessellate.h's Side
+  // order: low row, high column, high row, low column), -1 where the DEM ends.
+  std::array<int, 4> blockNeighbours(int block) const
+  {
+    const int c = block % blockCols, r = block / blockCols;
+    return { r > 0 ? block - blockCols : -1, c + 1 < blockCols ? block + 1 : -1,
+      r + 1 < blockRows ? block + blockCols : -1, c > 0 ? block - 1 : -1 };
   }
 };
 

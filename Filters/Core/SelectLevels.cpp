@@ -7,6 +7,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -110,15 +111,13 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
     {
       continue; // refined below its path already (fixStrips)
     }
-    const int c = b % qt.blockCols, r = b / qt.blockCols;
-    const int neighbour[4] = { b - qt.blockCols, b + 1, b + qt.blockCols, b - 1 };
-    const bool exists[4] = { r > 0, c + 1 < qt.blockCols, r + 1 < qt.blockRows, c > 0 };
+    const std::array<int, 4> neighbour = qt.blockNeighbours(b);
     MorphChain chain;
     const int links = morphChain(qt, b, chain);
     double lambda = ramp.lambda[b];
     for (int side = 0; side < 4; ++side)
     {
-      const int nb = exists[side] ? neighbour[side] : -1;
+      const int nb = neighbour[side];
       const int nbLevel = nb >= 0 ? levels[nb] : -1;
       if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel))
       {
@@ -170,17 +169,15 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
       continue; // one-quad and thin blocks have corner-only edges: nothing to join
     }
     const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const int c = b % qt.blockCols, r = b / qt.blockCols;
-    const int neighbour[4] = { b - qt.blockCols, b + 1, b + qt.blockCols, b - 1 };
-    const bool exists[4] = { r > 0, c + 1 < qt.blockCols, r + 1 < qt.blockRows, c > 0 };
+    const std::array<int, 4> neighbour = qt.blockNeighbours(b);
     for (int side = 0; side < 4; ++side)
     {
       const int n = cfg.edgeLevel[side];
-      if (!exists[side] || n <= m || t.strip(b, side, m, n) <= budget[b])
+      const int nb = neighbour[side];
+      if (nb < 0 || n <= m || t.strip(b, side, m, n) <= budget[b])
       {
         continue;
       }
-      const int nb = neighbour[side];
       if (levels[nb] == kCoveredLevel)
       {
         // The edge is a merged node's: only splitting that node refines it.

@@ -285,13 +285,7 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
 {
   BlockConfig cfg;
   cfg.level = levels[block];
-  const int c = block % qt.blockCols, r = block / qt.blockCols;
-  const int neighbour[4] = {
-    r > 0 ? block - qt.blockCols : -1,
-    c + 1 < qt.blockCols ? block + 1 : -1,
-    r + 1 < qt.blockRows ? block + qt.blockCols : -1,
-    c > 0 ? block - 1 : -1,
-  };
+  const std::array<int, 4> neighbour = qt.blockNeighbours(block);
   const int top = topLevel(qt.blockWidth(block), qt.blockHeight(block));
   for (int side = 0; side < 4; ++side)
   {
