@@ -181,25 +181,6 @@ private:
   BudgetScratch& s_;
 };
 
-// Triangles of a whole selection (blocks of `visible` with a level).
-std::size_t selectionTriangles(const Quadtree& qt, const std::vector<int>& visible,
-  const std::vector<int8_t>& levels, std::vector<std::size_t>* perBlock)
-{
-  std::size_t total = 0;
-  for (int b : visible)
-  {
-    if (levels[b] >= 0)
-    {
-      const std::size_t n = blockTriangleCount(qt, b, blockConfigOf(qt, levels, b));
-      total += n;
-      if (perBlock)
-      {
-        (*perBlock)[b] = n;
-      }
-    }
-  }
-  return total;
-}
 
 // Phase 1: the finest tau-driven selection (selectLevels) within the budget, by bisection
 // of tau in log space between `lo` and `hi` (whose selection, every block at its coarsest
@@ -231,6 +212,39 @@ void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::ve
 }
 
 } // namespace
+
+std::size_t selectionTriangles(const Quadtree& qt, const std::vector<int>& visible,
+  const std::vector<int8_t>& levels, std::vector<std::size_t>* perBlock)
+{
+  std::size_t total = 0;
+  for (int b : visible)
+  {
+    if (levels[b] >= 0)
+    {
+      const std::size_t n = blockTriangleCount(qt, b, blockConfigOf(qt, levels, b));
+      total += n;
+      if (perBlock)
+      {
+        (*perBlock)[b] = n;
+      }
+    }
+  }
+  return total;
+}
+
+double selectionScreenError(const Quadtree& qt, const ErrorTable& table,
+  const std::vector<int>& drawn, const std::vector<int8_t>& levels, const std::vector<double>& factor)
+{
+  double e = 0.0;
+  for (int b : drawn)
+  {
+    if (levels[b] >= 0)
+    {
+      e = std::max(e, projectedError(qt, table, levels, factor, b));
+    }
+  }
+  return e;
+}
 
 void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
   const std::vector<int>& visible, const std::vector<double>& factor, double tau,

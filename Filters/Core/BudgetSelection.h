@@ -97,6 +97,15 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
   std::size_t triangleBudget, std::vector<int8_t>& levels, BudgetScratch& scratch,
   BudgetOutcome& outcome);
 
+// Triangles of the listed blocks that have a level (blockTriangleCount), each also written
+// to perBlock[b] when given.
+std::size_t selectionTriangles(const Quadtree& qt, const std::vector<int>& drawn,
+  const std::vector<int8_t>& levels, std::vector<std::size_t>* perBlock = nullptr);
+
+// The largest projected certified error (pixels) of the listed blocks that have a level.
+double selectionScreenError(const Quadtree& qt, const ErrorTable& table,
+  const std::vector<int>& drawn, const std::vector<int8_t>& levels, const std::vector<double>& factor);
+
 // Phase 2 alone, on a selection made elsewhere: `drawn` lists the blocks that may have a
 // level >= 0 (kCoveredLevel blocks belong to merged nodes, which stay); `fixedTriangles`
 // and `fixedError` (pixels) are the merged nodes' triangles and largest projected error.

@@ -43,45 +43,45 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
   return stats_;
 }
 
+namespace
+{
+// What the merged nodes of a selection hold fixed in a budgeted frame: their fans'
+// triangles and their largest projected error (pixels).
+struct MergedPart
+{
+  std::size_t triangles = 0;
+  double error = 0.0;
+};
+
+MergedPart mergedPart(const Terrain& t, const std::vector<int>& merged,
+  const std::vector<double>& mergedFactor)
+{
+  MergedPart p;
+  for (std::size_t k = 0; k < merged.size(); ++k)
+  {
+    p.triangles += mergedNodeTriangleCount(t.qt, merged[k]);
+    const double e = t.table.mergedError[merged[k]];
+    if (e > 0.0)
+    {
+      p.error = std::max(p.error, e * mergedFactor[k]);
+    }
+  }
+  return p;
+}
+} // namespace
+
 double Engine::hierarchicalError() const
 {
   const Terrain& t = *terrain_;
-  double e = 0.0;
-  for (int b : visibleList_)
-  {
-    const double own = levels_[b] >= 0 ? blockCertifiedError(t.qt, t.table, levels_, b) : 0.0;
-    if (own > 0.0)
-    {
-      e = std::max(e, own * factor_[b]);
-    }
-  }
-  for (std::size_t k = 0; k < nodeSelection_.merged.size(); ++k)
-  {
-    const double own = t.table.mergedError[nodeSelection_.merged[k]];
-    if (own > 0.0)
-    {
-      e = std::max(e, own * nodeSelection_.mergedFactor[k]);
-    }
-  }
-  return e;
+  return std::max(selectionScreenError(t.qt, t.table, visibleList_, levels_, factor_),
+    mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor).error);
 }
 
 std::size_t Engine::hierarchicalTriangles() const
 {
   const Terrain& t = *terrain_;
-  std::size_t n = 0;
-  for (int b : visibleList_)
-  {
-    if (levels_[b] >= 0)
-    {
-      n += blockTriangleCount(t.qt, b, blockConfigOf(t.qt, levels_, b));
-    }
-  }
-  for (int node : nodeSelection_.merged)
-  {
-    n += mergedNodeTriangleCount(t.qt, node);
-  }
-  return n;
+  return selectionTriangles(t.qt, visibleList_, levels_) +
+    mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor).triangles;
 }
 
 bool Engine::selectHierarchicallyWithinBudget(
@@ -171,21 +171,10 @@ bool Engine::selectHierarchicallyWithinBudget(
   nodeSelection_.merged.swap(best.merged);
   nodeSelection_.mergedFactor.swap(best.mergedFactor);
   // Phase 2 on its blocks; the merged nodes stay.
-  std::size_t fixedTriangles = 0;
-  double fixedError = 0.0;
-  for (std::size_t k = 0; k < nodeSelection_.merged.size(); ++k)
-  {
-    const int node = nodeSelection_.merged[k];
-    fixedTriangles += mergedNodeTriangleCount(t.qt, node);
-    const double e = t.table.mergedError[node];
-    if (e > 0.0)
-    {
-      fixedError = std::max(fixedError, e * nodeSelection_.mergedFactor[k]);
-    }
-  }
+  const MergedPart fixed = mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor);
   const std::size_t coarsest = outcome.coarsestTriangles;
-  refineWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, fixedTriangles,
-    fixedError, levels_, budgetScratch_, outcome);
+  refineWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, fixed.triangles,
+    fixed.error, levels_, budgetScratch_, outcome);
   outcome.coarsestTriangles = coarsest;
   return true;
 }
