@@ -14,6 +14,7 @@
 #include "Engine.h"
 #include "Levels.h"
 #include "Morph.h"
+#include "MorphTestUtil.h"
 #include "SyntheticTerrain.h"
 #include "Tessellate.h"
 
@@ -34,16 +35,6 @@ gmm::Heightfield handField()
     for (int i = 0; i < 9; ++i)
       hf.z[hf.index(i, j)] = static_cast<float>(i * i + 3 * j * j + i * j + ((i * 7 + j * 5) % 4));
   return hf;
-}
-
-std::vector<double> morphedHeights(const gmm::Engine& e, const gmm::MorphFrame& f)
-{
-  const gmm::Heightfield& hf = e.heightfield();
-  std::vector<double> z(hf.sampleCount());
-  for (int j = 0; j < hf.ny; ++j)
-    for (int i = 0; i < hf.nx; ++i)
-      z[hf.index(i, j)] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, i, j);
-  return z;
 }
 
 gmm::View randomCamera(Rng& rng, const gmm::Heightfield& hf)

@@ -13,6 +13,7 @@
 #include "Engine.h"
 #include "Morph.h"
 #include "MorphRamp.h"
+#include "MorphTestUtil.h"
 #include "SyntheticTerrain.h"
 
 #include <gtest/gtest.h>
@@ -179,10 +180,7 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
     EXPECT_EQ(e.lastError(), "");
     gmm::MorphFrame mf;
     gmm::computeMorph(hf, e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, mf, e.morphRamp());
-    std::vector<double> z(hf.sampleCount());
-    for (int j = 0; j < hf.ny; ++j)
-      for (int i = 0; i < hf.nx; ++i)
-        z[hf.index(i, j)] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), mf, i, j);
+    const std::vector<double> z = morphedHeights(e, mf);
     const ScreenMeasure m = measureScreenError(hf, e.indices(), &v, tau, MeasureTransform(), z.data());
     EXPECT_EQ(m.violations, 0u) << "frame " << f << ": " << m.first;
     EXPECT_EQ(m.uncovered, 0u) << m.first;
