@@ -36,12 +36,7 @@ def main(argv):
     spacing, bg, size = 30.0, (0.1, 0.1, 0.2), (480, 480)
     out = {"nx": nx, "ny": ny}
     t = time.perf_counter()
-    src = geomipmap.vtkGeoMipMapFractalSource()
-    src.SetDimensions(nx, ny)
-    src.SetSpacing(spacing)
-    src.SetSeed(7)
-    src.Update()
-    image = src.GetOutput()
+    image = refscene.fractal_image(nx, ny, 7, spacing)
     z = refscene.heights(image)
     out["generate_s"] = round(time.perf_counter() - t, 1)
 

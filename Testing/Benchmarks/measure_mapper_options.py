@@ -9,6 +9,7 @@ from other processes hits them alike. Prints the median frame time (Render +
 WaitForCompletion), the median LOD time (GetLastUpdateTime) and the mean triangle count.
 """
 import math
+import os
 import statistics
 import sys
 import time
@@ -16,6 +17,9 @@ import time
 from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import geomipmap
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))  # refscene
+import refscene  # noqa: E402
 
 CONFIGS = [  # name, Geomorphing, FrontToBack
     ("morph + front-to-back", True, True),
@@ -27,12 +31,7 @@ CONFIGS = [  # name, Geomorphing, FrontToBack
 
 def main(argv):
     n = int(argv[1]) if len(argv) > 1 else 4097
-    src = geomipmap.vtkGeoMipMapFractalSource()
-    src.SetDimensions(n, n)
-    src.SetSpacing(30.0)
-    src.SetSeed(1)
-    src.Update()
-    image = src.GetOutput()
+    image = refscene.fractal_image(n, n, 1)
     ren = vtkRenderer()
     win = vtkRenderWindow()
     win.SetSize(1280, 720)

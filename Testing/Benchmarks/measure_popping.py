@@ -25,9 +25,13 @@ object.
 
 import json
 import math
+import os
 import statistics
 import sys
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))  # refscene
+import refscene  # noqa: E402
 
 
 def arg(argv, name, default, kind=float):
@@ -35,7 +39,6 @@ def arg(argv, name, default, kind=float):
 
 
 def load_terrain(argv):
-    import geomipmap
     if "--dem" in argv:
         from vtkmodules.vtkIOImage import vtkPNGReader
         from vtkmodules.vtkImagingCore import vtkImageCast, vtkImageShiftScale
@@ -52,12 +55,7 @@ def load_terrain(argv):
         img.SetSpacing(sp, sp, 1.0)
         return img
     n = arg(argv, "--n", 1025, int)
-    src = geomipmap.vtkGeoMipMapFractalSource()
-    src.SetDimensions(n, n)
-    src.SetSpacing(30.0)
-    src.SetSeed(1)
-    src.Update()
-    return src.GetOutput()
+    return refscene.fractal_image(n, n, 1)
 
 
 def main(argv):
