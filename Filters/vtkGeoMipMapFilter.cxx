@@ -124,9 +124,8 @@ int vtkGeoMipMapFilter::RequestData(
       vtkErrorMacro("Cannot use the camera: " << err);
       return 0;
     }
-    // Geomorphing's level path (MorphRamp.h): also where the range is invalid, none (the
-    // engine follows a path only for a range > 1).
-    in.Engine.setMorphRange(this->Geomorphing && std::isfinite(this->GeomorphRange) ? this->GeomorphRange : 0.0);
+    // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
+    in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
     stats = &in.Engine.update(view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget));
   }
   // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.

@@ -556,10 +556,8 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   if (!this->LastFrameFrozen)
   {
     const auto start = Clock::now();
-    // Geomorphing's level path (MorphRamp.h); none where the range is not finite (the
-    // engine follows a path only for a range > 1).
-    in.Engine.setMorphRange(
-      this->Geomorphing && std::isfinite(this->GeomorphRange) ? this->GeomorphRange : 0.0);
+    // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
+    in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
     in.Engine.update(view, this->PixelError, budget);
     this->LastUpdateTime = SecondsSince(start);
     in.HasSelection = in.Engine.lastError().empty();

@@ -96,11 +96,11 @@ public:
   // The nodes drawn whole in the last frame (indices into quadtree().nodes).
   const std::vector<int>& mergedNodeList() const { return drawnMerged_; }
 
-  // Geomorphing's level path (MorphRamp.h): range > 1 makes update(view, tau) choose each
-  // block's level on a path that changes by at most one level per factor `range` of
-  // distance, and report the path's morph factors (morphRamp()) for computeMorph; <= 1
-  // (the default) selects the coarsest levels within tau. Budgeted and view-independent
-  // frames never follow it.
+  // Geomorphing's level path (MorphRamp.h): a finite range > 1 makes update(view, tau)
+  // choose each block's level on a path that changes by at most one level per factor
+  // `range` of distance, and report the path's morph factors (morphRamp()) for
+  // computeMorph; any other range (<= 1, the default, NaN, +inf) selects the coarsest levels
+  // within tau. Budgeted and view-independent frames never follow it.
   void setMorphRange(double range) { ramp_.range = range; }
   double morphRange() const { return ramp_.range; }
   // The path of the last frame, or null when it did not follow one.

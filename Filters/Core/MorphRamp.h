@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace gmm
@@ -50,11 +51,12 @@ constexpr double kMorphSettlePerFrame = 0.02;
 // The path's outcome for the blocks a frame selected, per block (stale for the others).
 struct MorphRamp
 {
-  double range = 0.0;          // input: > 1 follows the path, else plain coarsest-within-tau
+  double range = 0.0;          // input: finite and > 1 follows the path, else plain
+                               // coarsest-within-tau (NaN, +inf and <= 1 alike)
   std::vector<int8_t> level;   // the path's level (the selection may refine it further)
   std::vector<float> factor;   // the path's morph factor toward the next level, in [0, 1]
   std::vector<double> lambda;  // the path's continuous level (index into the block's chain)
-  bool active() const { return range > 1.0; }
+  bool active() const { return range > 1.0 && range <= std::numeric_limits<double>::max(); }
 };
 
 // The levels block b morphs through, finest first: 0, then each next valid level

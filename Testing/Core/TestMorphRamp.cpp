@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 using namespace gmmtest;
 
@@ -229,4 +230,32 @@ TEST(MorphRamp, FlightCertifiedAndSmooth)
   EXPECT_LE(path.worstPop, 0.5 * plain.worstPop);
   EXPECT_LE(path.meanPop, 0.6 * plain.meanPop);
   EXPECT_GE(path.triangles, plain.triangles); // the path is never coarser than needed
+}
+
+// A range that is not finite and > 1 follows no path: the same levels as no range at all.
+TEST(MorphRamp, OnlyAFiniteRangeAboveOneFollowsThePath)
+{
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(513, 513, 30.0, 1, 1500.0, 1);
+  gmm::Engine plain, path;
+  ASSERT_EQ(plain.setHeightfield(hf, 32, 1), "");
+  path.setTerrain(plain.terrain());
+  // The start of the flight of FlightCertifiedAndSmooth.
+  const double top = *std::max_element(hf.z.begin(), hf.z.end()), ext = 512 * 30.0;
+  gmm::View v;
+  v.eye = { 0.1 * ext, 0.5 * ext, top + 250.0 };
+  v.forward = { std::cos(0.35), 0.0, -std::sin(0.35) };
+  v.fovYDegrees = 50.0;
+  plain.update(v, 2.0);
+  for (double range : { 0.0, 1.0, std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::quiet_NaN(), -3.0 })
+  {
+    path.setMorphRange(range);
+    path.update(v, 2.0);
+    EXPECT_EQ(path.morphRamp(), nullptr) << range;
+    EXPECT_EQ(path.levels(), plain.levels()) << range;
+  }
+  path.setMorphRange(gmm::kDefaultMorphRange);
+  path.update(v, 2.0);
+  ASSERT_NE(path.morphRamp(), nullptr);
+  EXPECT_NE(path.levels(), plain.levels()); // the path really changes the levels here
 }
