@@ -6,6 +6,26 @@
 namespace gmm
 {
 
+namespace
+{
+// The median of v (reordered); v not empty.
+double median(std::vector<double>& v)
+{
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + mid, v.end());
+  const double upper = v[mid];
+  if (v.size() % 2)
+  {
+    return upper;
+  }
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + mid));
+}
+
+// Counts this far apart (relative to the larger) make a pair that tells the fixed part
+// from the per-triangle part.
+constexpr double kPairSpread = 0.4;
+} // namespace
+
 const char* BudgetController::setSettings(const Settings& s)
 {
   if (s.minBudget < 1 || s.maxBudget < s.minBudget || s.initialBudget < s.minBudget ||
@@ -21,9 +41,9 @@ const char* BudgetController::setSettings(const Settings& s)
   {
     return "maxGrowth must be finite and > 1";
   }
-  if (!(s.forgetting >= 0.0 && s.forgetting < 1.0))
+  if (s.window < 3 || s.window > 64 || s.slopeWindow < 1 || s.slopeWindow > s.window)
   {
-    return "forgetting must be in [0, 1)";
+    return "window must be in [3, 64] and slopeWindow in [1, window]";
   }
   settings_ = s;
   reset();
@@ -33,10 +53,16 @@ const char* BudgetController::setSettings(const Settings& s)
 void BudgetController::reset()
 {
   budget_ = settings_.initialBudget;
-  w_ = sn_ = st_ = snn_ = snt_ = 0.0;
+  ring_.clear();
   fixed_ = perTriangle_ = 0.0;
   frames_ = 0;
   lastTriangles_ = 0;
+}
+
+const BudgetController::Frame& BudgetController::recent(int k) const
+{
+  const int w = settings_.window;
+  return ring_[static_cast<std::size_t>(((frames_ - 1 - k) % w + w) % w)];
 }
 
 void BudgetController::observe(double seconds, std::size_t triangles)
@@ -45,12 +71,15 @@ void BudgetController::observe(double seconds, std::size_t triangles)
   {
     return;
   }
-  const double n = static_cast<double>(triangles), f = settings_.forgetting;
-  w_ = f * w_ + 1.0;
-  sn_ = f * sn_ + n;
-  st_ = f * st_ + seconds;
-  snn_ = f * snn_ + n * n;
-  snt_ = f * snt_ + n * seconds;
+  const Frame f{ seconds, static_cast<double>(triangles) };
+  if (static_cast<int>(ring_.size()) < settings_.window)
+  {
+    ring_.push_back(f);
+  }
+  else
+  {
+    ring_[static_cast<std::size_t>(frames_ % settings_.window)] = f;
+  }
   ++frames_;
   lastTriangles_ = triangles;
   fit();
@@ -58,25 +87,47 @@ void BudgetController::observe(double seconds, std::size_t triangles)
 
 void BudgetController::fit()
 {
-  const double meanN = sn_ / w_, meanT = st_ / w_;
-  const double varN = snn_ / w_ - meanN * meanN;
-  const double covNT = snt_ / w_ - meanN * meanT;
-  // Regress only when the triangle counts spread (relative deviation above ~5 %): else
-  // the slope is noise over noise.
-  if (varN > 0.0025 * meanN * meanN && covNT > 0.0)
+  const int held = std::min(frames_, settings_.window);
+  // Fixed part: Theil-Sen over the pairs whose counts differ enough.
+  scratch_.clear();
+  for (int i = 0; i < held; ++i)
   {
-    const double slope = covNT / varN;
-    const double intercept = meanT - slope * meanN;
-    if (intercept >= 0.0)
+    for (int j = i + 1; j < held; ++j)
     {
-      perTriangle_ = slope;
-      fixed_ = intercept;
-      return;
+      const Frame& a = recent(i);
+      const Frame& b = recent(j);
+      if (std::fabs(a.triangles - b.triangles) >= kPairSpread * std::max(a.triangles, b.triangles))
+      {
+        scratch_.push_back((a.seconds - b.seconds) / (a.triangles - b.triangles));
+      }
     }
   }
-  // Keep the fixed part (clamped to what the frames allow) and fit the slope through it.
-  fixed_ = std::min(fixed_, 0.9 * meanT);
-  perTriangle_ = (meanT - fixed_) / meanN;
+  if (static_cast<int>(scratch_.size()) >= kMinPairs)
+  {
+    const double slope = median(scratch_);
+    if (slope > 0.0)
+    {
+      scratch_.clear();
+      for (int i = 0; i < held; ++i)
+      {
+        scratch_.push_back(recent(i).seconds - slope * recent(i).triangles);
+      }
+      fixed_ = std::max(median(scratch_), 0.0);
+    }
+  }
+  double fastest = recent(0).seconds;
+  for (int i = 1; i < held; ++i)
+  {
+    fastest = std::min(fastest, recent(i).seconds);
+  }
+  fixed_ = std::min(fixed_, 0.9 * fastest);
+  // Cost per triangle: the median of the recent frames' own, over the fixed part.
+  scratch_.clear();
+  for (int i = 0; i < std::min(held, settings_.slopeWindow); ++i)
+  {
+    scratch_.push_back((recent(i).seconds - fixed_) / recent(i).triangles);
+  }
+  perTriangle_ = median(scratch_);
 }
 
 double BudgetController::predict(std::size_t triangles) const

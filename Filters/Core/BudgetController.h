@@ -3,10 +3,20 @@
 // VTK hands each prop an AllocatedRenderTime (seconds) for interactive frames. The
 // controller learns this machine's cost model from the renderer's own recent frames,
 //   seconds = fixed + perTriangle * triangles,
-// by least squares with exponential forgetting, and answers the budget whose predicted
-// time is the target. When recent frames all drew about the same number of triangles the
-// two terms cannot be told apart: the fixed part is then kept from earlier and the slope
-// alone follows the frames.
+// and answers the budget whose predicted time is the target.
+//
+// Robust to single slow frames. Frame times on a shared machine have a heavy upper tail
+// (another process, a page-fault burst, the application's own work between frames): one
+// frame may take 1.5x its neighbours at the same triangle count. A least-squares fit lets
+// such a frame move the model arbitrarily (on a recorded flight the fixed part jumped from
+// 41 to 111 ms on one slow frame, above the 100 ms target, and the budget fell to its
+// minimum for ten frames: TestBudgetController replays it). So both terms are medians:
+// - fixed: Theil-Sen, the median of the slopes between pairs of frames whose counts differ
+//   by at least a quarter (closer pairs give noise over noise), and the median intercept
+//   under that slope. Kept from earlier while fewer than kMinPairs pairs qualify (a steady
+//   budget does not spread the counts), and never above 0.9x the fastest recent frame.
+// - perTriangle: the median over the last `slopeWindow` frames of (seconds - fixed) /
+//   triangles, so a spike moves it only if it persists for half of them.
 //
 // Hysteresis: the budget in force is kept while its predicted time is within
 // `hysteresis` (a fraction) of the target, so measurement noise does not make it
@@ -23,6 +33,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 namespace gmm
 {
@@ -37,8 +48,12 @@ public:
     std::size_t maxBudget = std::size_t(1) << 30;
     double hysteresis = 0.1; // keep the budget while predicted time is within 10 % of target
     double maxGrowth = 2.0;  // at most x2 the triangles last drawn
-    double forgetting = 0.7; // weight of the past per observed frame (0..1)
+    int window = 16;         // frames the fixed part is fitted on (3..64)
+    int slopeWindow = 5;     // frames the cost per triangle is the median of (1..window)
   };
+
+  // Pairs of frames with counts apart enough that the fixed part is refitted.
+  static constexpr int kMinPairs = 6;
 
   BudgetController() = default;
   explicit BudgetController(const Settings& s)
@@ -69,12 +84,19 @@ public:
   void reset();
 
 private:
+  struct Frame
+  {
+    double seconds;
+    double triangles;
+  };
+  // The k-th most recent observed frame (0: the last), k < min(frames_, window).
+  const Frame& recent(int k) const;
   void fit();
 
   Settings settings_;
   std::size_t budget_ = Settings().initialBudget;
-  // Weighted sums over frames: weight, n, t, n^2, n t.
-  double w_ = 0.0, sn_ = 0.0, st_ = 0.0, snn_ = 0.0, snt_ = 0.0;
+  std::vector<Frame> ring_; // the last `window` frames, oldest overwritten
+  std::vector<double> scratch_;
   double fixed_ = 0.0, perTriangle_ = 0.0;
   int frames_ = 0;
   std::size_t lastTriangles_ = 0;
