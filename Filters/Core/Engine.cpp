@@ -233,7 +233,7 @@ bool Engine::finishMergedNodes(
     if (!nodeDrawn_[n])
     {
       blockScratch_.clear();
-      emitMergedNode(t.hf, t.qt, n, blockScratch_);
+      emitMergedNode(t.hf, t.qt, n, blockScratch_, emitScratch_);
       arena_.assign(blocks + n, blockScratch_.data(), blockScratch_.size());
       nodeDrawn_[n] = 1;
       ++s.blocksRetessellated;
@@ -278,7 +278,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
     if (levels_[b] >= 0)
     {
       ++s.visibleBlocks;
-      const double e = blockCertifiedError(t.qt, t.table, levels_, b); // stored-height units
+      const double e = blockCertifiedError(t.qt, t.table, b, cfg); // stored-height units
       s.maxGeometricError = std::max(s.maxGeometricError, e * heightScale_);
       if (factor && e > 0.0) // e == 0 with an infinite factor would give NaN
       {
@@ -294,7 +294,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
     blockScratch_.clear();
     if (cfg.level >= 0)
     {
-      emitBlock(t.hf, t.qt, b, cfg, BlockPart::Whole, blockScratch_);
+      emitBlock(t.hf, t.qt, b, cfg, BlockPart::Whole, blockScratch_, emitScratch_);
       ++s.blocksRetessellated;
     }
     arena_.assign(b, blockScratch_.data(), blockScratch_.size());

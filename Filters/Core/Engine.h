@@ -188,6 +188,7 @@ private:
   std::vector<BlockConfig> drawnConfig_;
   IndexArena arena_;
   std::vector<uint32_t> blockScratch_;
+  EmitScratch emitScratch_; // emitBlock / emitMergedNode buffers, reused frame to frame
   mutable std::vector<uint32_t> indices_;
   mutable bool indicesCurrent_ = true;
   FrameStats stats_;

@@ -369,20 +369,20 @@ void selectLevelsForError(
 double blockCertifiedError(
   const Quadtree& qt, const ErrorTable& table, const std::vector<int8_t>& levels, int block)
 {
-  const int m = levels[block];
-  if (m < 0)
-  {
-    return 0.0;
-  }
+  return levels[block] < 0 ? 0.0 : blockCertifiedError(qt, table, block, blockConfigOf(qt, levels, block));
+}
+
+double blockCertifiedError(const Quadtree& qt, const ErrorTable& table, int block, const BlockConfig& config)
+{
+  const int m = config.level;
   double e = table.ownExact(block, m);
   if (ringLevel(qt, block, m))
   {
-    const BlockConfig cfg = blockConfigOf(qt, levels, block);
     for (int side = 0; side < 4; ++side)
     {
-      if (cfg.edgeLevel[side] > m)
+      if (config.edgeLevel[side] > m)
       {
-        e = std::max(e, static_cast<double>(table.strip(block, side, m, cfg.edgeLevel[side])));
+        e = std::max(e, static_cast<double>(table.strip(block, side, m, config.edgeLevel[side])));
       }
     }
   }

@@ -125,5 +125,7 @@ void selectLevelsForError(
 // joined to a coarser edge.
 double blockCertifiedError(
   const Quadtree& qt, const ErrorTable& table, const std::vector<int8_t>& levels, int block);
+// The same for a drawn block whose configuration (blockConfigOf) is known.
+double blockCertifiedError(const Quadtree& qt, const ErrorTable& table, int block, const BlockConfig& config);
 
 } // namespace gmm

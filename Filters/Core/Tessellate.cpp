@@ -269,8 +269,16 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
 void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
   BlockPart part, std::vector<uint32_t>& out, bool keepNodata)
 {
-  TriangleSink sink(hf, out, keepNodata);
   EmitScratch scratch;
+  emitBlock(hf, qt, block, config, part, out, scratch, keepNodata);
+}
+
+void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, std::vector<uint32_t>& out, EmitScratch& scratch, bool keepNodata)
+{
+  // Every vertex is a sample of the block (borders included): where it has no nodata,
+  // there is nothing to drop, and the test would read each vertex's height.
+  TriangleSink sink(hf, out, keepNodata || !qt.blockHasNodata[static_cast<std::size_t>(block)]);
   emitBlockTo(sink, qt, block, config, part, scratch);
 }
 
@@ -327,13 +335,12 @@ void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)
 namespace
 {
 template <typename Sink>
-void emitMergedTo(Sink& sink, const Quadtree& qt, int node)
+void emitMergedTo(Sink& sink, const Quadtree& qt, int node, std::vector<GridPoint>& perimeter)
 {
   if (!mergeableNode(qt, node))
   {
     return;
   }
-  std::vector<GridPoint> perimeter; // a few per frame: not worth a scratch
   mergedPerimeter(qt, node, perimeter);
   const QuadtreeNode& n = qt.nodes[node];
   const GridPoint centre{ (qt.colStart[n.colBegin] + qt.colStart[n.colEnd]) / 2,
@@ -347,30 +354,39 @@ void emitMergedTo(Sink& sink, const Quadtree& qt, int node)
 
 void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out)
 {
+  EmitScratch scratch;
+  emitMergedNode(hf, qt, node, out, scratch);
+}
+
+void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out,
+  EmitScratch& scratch)
+{
   TriangleSink sink(hf, out, false);
-  emitMergedTo(sink, qt, node);
+  emitMergedTo(sink, qt, node, scratch.outer);
 }
 
 void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out)
 {
   GridSink sink(out);
-  emitMergedTo(sink, qt, node);
+  std::vector<GridPoint> perimeter;
+  emitMergedTo(sink, qt, node, perimeter);
 }
 
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   std::vector<uint32_t>& out, const std::vector<int>& merged)
 {
   out.clear();
+  EmitScratch scratch;
   for (int b = 0; b < qt.blockCount(); ++b)
   {
     if (levels[b] >= 0)
     {
-      emitBlock(hf, qt, b, blockConfigOf(qt, levels, b), BlockPart::Whole, out);
+      emitBlock(hf, qt, b, blockConfigOf(qt, levels, b), BlockPart::Whole, out, scratch);
     }
   }
   for (int n : merged)
   {
-    emitMergedNode(hf, qt, n, out);
+    emitMergedNode(hf, qt, n, out, scratch);
   }
 }
 

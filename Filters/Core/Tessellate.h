@@ -67,9 +67,14 @@ struct EmitScratch
 };
 
 // Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a
-// vertex is NaN if `keepNodata` is true (used by the error table to see holes).
+// vertex is NaN if `keepNodata` is true (used by the error table to see holes). The form
+// with a scratch allocates nothing once its buffers have grown: the engine emits every
+// changed block of a frame through one (at 4-quad leaves a from-scratch frame spent a
+// quarter of its time allocating the buffers of the other form).
 void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
   BlockPart part, std::vector<uint32_t>& out, bool keepNodata = false);
+void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, std::vector<uint32_t>& out, EmitScratch& scratch, bool keepNodata = false);
 
 // The same triangles as grid points, nodata or not (for the error table, which needs the
 // grid positions and sees holes itself). `out` is appended to.
@@ -102,8 +107,11 @@ bool mergeableNode(const Quadtree& qt, int node);
 void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out);
 
 // A merged node's fan, as indices (appended; triangles over nodata dropped as in
-// emitBlock) or as grid points (appended, nodata or not).
+// emitBlock) or as grid points (appended, nodata or not). The scratch's `outer` holds the
+// perimeter.
 void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out);
+void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out,
+  EmitScratch& scratch);
 void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out);
 
 // Edge level of each side of `block` given every block's level (-1 = not drawn,
