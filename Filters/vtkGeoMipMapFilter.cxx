@@ -134,7 +134,8 @@ int vtkGeoMipMapFilter::RequestData(
   if (morph)
   {
     gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
-      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph, in.Engine.morphRamp());
+      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph, in.Engine.morphRamp(),
+      &in.Engine.drawnBlocks());
   }
   else if (!in.Engine.empty())
   {

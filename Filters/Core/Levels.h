@@ -23,10 +23,54 @@ enum class BlockShape
   Invalid
 };
 
-BlockShape blockShape(int widthQuads, int heightQuads, int level);
+// Inline: selection, geomorphing and tessellation ask these for every block of a frame.
+inline BlockShape blockShape(int widthQuads, int heightQuads, int level)
+{
+  if (level < 0 || level > 30 || widthQuads < 1 || heightQuads < 1)
+  {
+    return BlockShape::Invalid;
+  }
+  const long long step = 1LL << level;
+  if (step < widthQuads && step < heightQuads)
+  {
+    return BlockShape::Ring;
+  }
+  if (step >= widthQuads && step >= heightQuads)
+  {
+    return BlockShape::OneQuad;
+  }
+  if (level == 0)
+  {
+    return BlockShape::Thin; // one side is a single quad, the other longer
+  }
+  return BlockShape::Invalid;
+}
 
 // Highest level of a block: the first one that makes it one quad (ceil(log2(max side))).
-int topLevel(int widthQuads, int heightQuads);
+inline int topLevel(int widthQuads, int heightQuads)
+{
+  const int side = widthQuads > heightQuads ? widthQuads : heightQuads;
+  int m = 0;
+  while ((1LL << m) < side)
+  {
+    ++m;
+  }
+  return m;
+}
+
+// The next valid level above m for a w x h block, or -1 when m is its top level: m + 1
+// while it is a ring, else the top level (the levels between give no shape; a level >= 1
+// is one quad only from the top up). Geomorphing's chain of targets (Morph.h, MorphRamp.h).
+inline int nextValidLevel(int widthQuads, int heightQuads, int m)
+{
+  const int top = topLevel(widthQuads, heightQuads);
+  if (m + 1 > top)
+  {
+    return -1;
+  }
+  const int narrow = widthQuads < heightQuads ? widthQuads : heightQuads;
+  return (1LL << (m + 1)) < narrow ? m + 1 : top;
+}
 
 // Samples along an edge [first, last] at level m: first, first + 2^m, ... (< last), last.
 void edgeSamples(int first, int last, int level, std::vector<int>& out);

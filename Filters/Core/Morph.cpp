@@ -125,33 +125,48 @@ std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int c, int 
 }
 } // namespace
 
-int nextValidLevel(int widthQuads, int heightQuads, int m)
-{
-  const int top = topLevel(widthQuads, heightQuads);
-  for (int n = m + 1; n <= top; ++n)
-  {
-    if (blockShape(widthQuads, heightQuads, n) != BlockShape::Invalid)
-    {
-      return n;
-    }
-  }
-  return -1;
-}
-
 void clearMorph(const Quadtree& qt, MorphFrame& out)
 {
   out.blockT.assign(qt.blockCount(), 0.0f);
   out.blockTarget.assign(qt.blockCount(), -1);
   out.vEdges.assign(static_cast<std::size_t>(qt.blockCols + 1) * qt.blockRows, MorphEdge());
   out.hEdges.assign(static_cast<std::size_t>(qt.blockCols) * (qt.blockRows + 1), MorphEdge());
+  out.blocks.clear();
   out.maxBoundPixels = 0.0;
 }
 
+namespace
+{
+// Back to no morphing, touching only what the last frame set (its blocks and their edges):
+// a frame costs what it draws, not the DEM. A frame of another quadtree starts afresh.
+void resetMorph(const Quadtree& qt, MorphFrame& out)
+{
+  if (out.blockT.size() != static_cast<std::size_t>(qt.blockCount()) ||
+    out.vEdges.size() != static_cast<std::size_t>(qt.blockCols + 1) * qt.blockRows ||
+    out.hEdges.size() != static_cast<std::size_t>(qt.blockCols) * (qt.blockRows + 1))
+  {
+    clearMorph(qt, out);
+    return;
+  }
+  for (int b : out.blocks)
+  {
+    out.blockT[b] = 0.0f;
+    out.blockTarget[b] = -1;
+    for (MorphEdge* e : edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols))
+    {
+      *e = MorphEdge();
+    }
+  }
+  out.blocks.clear();
+  out.maxBoundPixels = 0.0;
+}
+} // namespace
+
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
-  const MorphRamp* ramp)
+  const MorphRamp* ramp, const std::vector<int>* drawnBlocks)
 {
-  clearMorph(qt, out);
+  resetMorph(qt, out);
   const int blocks = qt.blockCount();
   if (cache.heights != hf.heights() || static_cast<int>(cache.key.size()) != blocks)
   {
@@ -160,47 +175,62 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     cache.heights = hf.heights();
     cache.lastLambda.assign(blocks, -1.0);
     cache.lastFactor.assign(blocks, 0.0);
+    cache.lastDrawn.clear();
+  }
+  // The drawn blocks: the caller's list, or found in the levels.
+  std::vector<int>& drawn = out.blocks;
+  if (drawnBlocks)
+  {
+    drawn = *drawnBlocks;
+  }
+  else
+  {
+    for (int b = 0; b < blocks; ++b)
+    {
+      if (levels[b] >= 0)
+      {
+        drawn.push_back(b);
+      }
+    }
   }
   const bool limited = ramp && ramp->active();
+  const double slope = limited ? ramp->slope() : 0.0;
   auto budget = [&](int b) {
     const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
     return std::isfinite(f) && f > 0.0 ? tau / f : -1.0; // -1: does not morph
   };
+  auto edgesOfBlock = [&](int b) { return edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols); };
 
   // Edge levels and targets: an edge takes the level of the coarser block (Tessellate) and
   // moves toward the next level of the block(s) that set it.
-  for (int b = 0; b < blocks; ++b)
+  for (int b : drawn)
   {
     const int m = levels[b];
     const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-    if (m >= 0 && blockShape(w, h, m) == BlockShape::Ring)
+    if (blockShape(w, h, m) == BlockShape::Ring)
     {
       out.blockTarget[b] = static_cast<int8_t>(nextValidLevel(w, h, m));
     }
   }
-  for (int b = 0; b < blocks; ++b)
+  for (int b : drawn)
   {
-    if (levels[b] < 0)
-    {
-      continue;
-    }
     // The edge level as Tessellate draws it: the coarser of two drawn blocks (both sides
     // agree), the block's top level beside a merged node (corners only: nothing on the
     // edge moves, and the node's fan keeps its perimeter still).
     const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
     for (int side = 0; side < 4; ++side)
     {
       edges[side]->level = static_cast<int8_t>(std::max<int>(edges[side]->level, cfg.edgeLevel[side]));
     }
   }
-  for (int b = 0; b < blocks; ++b)
+  for (int b : drawn)
   {
-    if (levels[b] < 0 || out.blockTarget[b] < 0)
+    if (out.blockTarget[b] < 0)
     {
       continue;
     }
-    for (MorphEdge* e : edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols))
+    for (MorphEdge* e : edgesOfBlock(b))
     {
       if (e->level == levels[b])
       {
@@ -210,17 +240,19 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   }
 
   // Block factors: the inner grid, and the strips whose edge the block sets moving with it
-  // (and with the edge held, so that any lower edge factor stays certified too).
-  std::vector<const PartErrors*> parts(blocks, nullptr);
-  for (int b = 0; b < blocks; ++b)
+  // (and with the edge held, so that any lower edge factor stays certified too). parts[k]
+  // is drawn[k]'s part errors, or none when it does not morph.
+  std::vector<const PartErrors*>& parts = cache.parts;
+  parts.assign(drawn.size(), nullptr);
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    if (levels[b] < 0 || out.blockTarget[b] < 0 || budget(b) < 0.0)
+    const int b = drawn[k];
+    if (out.blockTarget[b] < 0 || budget(b) < 0.0)
     {
       continue;
     }
-    const int c = b % qt.blockCols, r = b / qt.blockCols;
     const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, c, r);
+    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
     std::array<int8_t, 10> key{ static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
       static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
       static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
@@ -232,7 +264,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       cache.key[b] = key;
     }
     const PartErrors& pe = cache.errors[b];
-    parts[b] = &pe;
+    parts[k] = &pe;
     const double x = budget(b);
     double t = pe.innerFrozen ? 0.0 : linearReach(pe.inner[0], pe.inner[1], x);
     for (int side = 0; side < 4; ++side)
@@ -261,7 +293,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const double fPrev = cache.lastFactor[b], lambdaPrev = cache.lastLambda[b];
     if (limited && lambdaPrev >= 0.0 && fPrev > 0.0)
     {
-      const double rise = rampSlope(ramp->range) * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
+      const double rise = slope * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
       t = std::min(t, std::max(0.0, lambdaPrev + rise - chainIndex(qt, b, levels[b])));
     }
     out.blockT[b] = factorDown(t);
@@ -269,14 +301,9 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
 
   // Edge factors: the largest factor of the blocks setting the edge, lowered until both
   // sides' strips fit their budgets with their blocks' factors.
-  for (int b = 0; b < blocks; ++b)
+  for (int b : drawn)
   {
-    if (levels[b] < 0)
-    {
-      continue;
-    }
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
-    for (MorphEdge* e : edges)
+    for (MorphEdge* e : edgesOfBlock(b))
     {
       if (e->target >= 0 && e->level == levels[b])
       {
@@ -284,13 +311,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       }
     }
   }
-  for (int b = 0; b < blocks; ++b)
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    if (levels[b] < 0)
-    {
-      continue;
-    }
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    const int b = drawn[k];
+    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
     for (int side = 0; side < 4; ++side)
     {
       MorphEdge& e = *edges[side];
@@ -298,7 +322,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       {
         continue;
       }
-      const PartErrors* pe = parts[b];
+      const PartErrors* pe = parts[k];
       if (!pe || pe->sideFrozen[side])
       {
         e.t = 0.0f; // a block that does not morph holds its edges
@@ -311,28 +335,42 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
   }
 
-  for (int b = 0; b < blocks; ++b)
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    if (!parts[b])
+    if (!parts[k])
     {
       continue;
     }
-    const PartErrors& pe = *parts[b];
+    const int b = drawn[k];
+    const PartErrors& pe = *parts[k];
     const double tb = out.blockT[b];
     double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols);
+    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
     for (int side = 0; side < 4; ++side)
     {
       bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));
     }
     out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
   }
-  // History for the next frame's rise limit (none from a frame without the path).
-  for (int b = 0; b < blocks; ++b)
+  // History for the next frame's rise limit (none from a frame without the path): the last
+  // frame's drawn blocks are forgotten, this frame's recorded.
+  for (int b : cache.lastDrawn)
   {
-    const bool drawn = limited && levels[b] >= 0 && b < static_cast<int>(factor.size());
-    cache.lastLambda[b] = drawn ? chainIndex(qt, b, levels[b]) + out.blockT[b] : -1.0;
-    cache.lastFactor[b] = drawn ? factor[b] : 0.0;
+    cache.lastLambda[b] = -1.0;
+    cache.lastFactor[b] = 0.0;
+  }
+  cache.lastDrawn.clear();
+  if (limited)
+  {
+    for (int b : drawn)
+    {
+      if (b < static_cast<int>(factor.size()))
+      {
+        cache.lastLambda[b] = chainIndex(qt, b, levels[b]) + out.blockT[b];
+        cache.lastFactor[b] = factor[b];
+        cache.lastDrawn.push_back(b);
+      }
+    }
   }
 }
 

@@ -62,10 +62,9 @@ struct MorphFrame
   std::vector<MorphEdge> vEdges;
   std::vector<MorphEdge> hEdges;
   double maxBoundPixels = 0.0; // certified bound of the morphed surface, max over blocks
+  std::vector<int> blocks;     // the drawn blocks the entries above were set for
 };
 
-// The next valid level above m for a w x h block (Levels.h), or -1 when m is its top level.
-int nextValidLevel(int widthQuads, int heightQuads, int m);
 
 // Per-block part errors of the configuration each block was last seen with, so that a frame
 // computes them only for blocks whose configuration or targets changed. One per engine.
@@ -79,6 +78,8 @@ struct MorphCache
   // (chain index + factor; -1 when not drawn) and projection factor in the last frame.
   std::vector<double> lastLambda;
   std::vector<double> lastFactor;
+  std::vector<int> lastDrawn;                // the blocks lastLambda / lastFactor hold
+  std::vector<const PartErrors*> parts;      // per drawn block of a frame (scratch)
 };
 
 // Morph factors for one frame. `levels` and `factor` (pixels per unit of stored height,
@@ -87,10 +88,13 @@ struct MorphCache
 // does not morph. `ramp` (Engine::morphRamp()): the level path the frame was selected on;
 // a block at its path's level morphs no further than the path's factor, and no block's
 // morph rises faster than the path's slope allows since the last call with the same cache
-// (MorphRamp.h), so that factors change smoothly with the camera.
+// (MorphRamp.h), so that factors change smoothly with the camera. `drawnBlocks`: the
+// blocks with a level >= 0 (Engine::drawnBlocks()), so that a frame costs what it draws;
+// without it they are found in `levels`. Only entries of drawn blocks and their edges are
+// written, and those of the previous frame on `out` reset.
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
-  const MorphRamp* ramp = nullptr);
+  const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr);
 
 // No morphing at all: every factor 0 (what a frame with geomorphing off draws).
 void clearMorph(const Quadtree& qt, MorphFrame& out);

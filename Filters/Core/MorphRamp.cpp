@@ -1,5 +1,6 @@
 #include "MorphRamp.h"
 
+#include "Levels.h"
 #include "Morph.h"
 
 #include <algorithm>
@@ -27,6 +28,11 @@ int morphChain(const Quadtree& qt, int b, MorphChain& chain)
 
 double rampPath(const double* error, int count, double budget, double range)
 {
+  return rampPathWithSlope(error, count, budget, rampSlope(range));
+}
+
+double rampPathWithSlope(const double* error, int count, double budget, double s)
+{
   if (count <= 0)
   {
     return 0.0;
@@ -46,7 +52,6 @@ double rampPath(const double* error, int count, double budget, double range)
   // Smaller budgets y on each rising segment: h(y) = k + (y - E_k) / dE + s ln(x / y) is
   // convex in y, lowest at y = s dE (clamped to the segment). Flat segments (equal errors)
   // are jumps of lambda_max: their ends are the neighbouring segments' ends.
-  const double s = rampSlope(range);
   const double tiny = std::numeric_limits<double>::min();
   for (int k = 0; k + 1 < count && error[k] < budget; ++k)
   {
@@ -74,7 +79,7 @@ namespace
 // rampPath over the chain's errors errorOf(level), which end at the first level that is not
 // allowed (+inf).
 template <typename ErrorOf>
-double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double range)
+double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double slope)
 {
   std::array<double, 32> error{};
   int count = 0;
@@ -87,7 +92,7 @@ double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double
     }
     error[count++] = e;
   }
-  return rampPath(error.data(), count, budget, range);
+  return rampPathWithSlope(error.data(), count, budget, slope);
 }
 } // namespace
 
@@ -104,17 +109,17 @@ int chainIndex(const Quadtree& qt, int block, int level)
 }
 
 double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,
-  double range)
+  double slope)
 {
-  return pathOverChain(chain, links, [&](int m) { return double(t.own(b, m)); }, budget, range);
+  return pathOverChain(chain, links, [&](int m) { return double(t.own(b, m)); }, budget, slope);
 }
 
 double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,
-  int nbSide, int nbLevel, double nbBudget, double range)
+  int nbSide, int nbLevel, double nbBudget, double slope)
 {
   return pathOverChain(chain, links,
     [&](int v) { return v <= nbLevel ? 0.0 : double(t.strip(nb, nbSide, nbLevel, v)); }, nbBudget,
-    range);
+    slope);
 }
 
 } // namespace gmm

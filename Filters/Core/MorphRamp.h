@@ -57,6 +57,20 @@ struct MorphRamp
   std::vector<float> factor;   // the path's morph factor toward the next level, in [0, 1]
   std::vector<double> lambda;  // the path's continuous level (index into the block's chain)
   bool active() const { return range > 1.0 && range <= std::numeric_limits<double>::max(); }
+  // rampSlope(range), remembered: a frame asks it for every block and neighbour.
+  double slope() const
+  {
+    if (!(slopeOf_ == range))
+    {
+      slopeOf_ = range;
+      slope_ = rampSlope(range);
+    }
+    return slope_;
+  }
+
+private:
+  mutable double slopeOf_ = std::numeric_limits<double>::quiet_NaN();
+  mutable double slope_ = 0.0;
 };
 
 // The levels block b morphs through, finest first: 0, then each next valid level
@@ -67,15 +81,17 @@ int morphChain(const Quadtree& qt, int b, MorphChain& chain);
 // lambda(budget) for the errors of a chain's levels (error[0..count), non-decreasing and
 // finite: a chain ends at its first level that is not allowed), in [0, count - 1].
 double rampPath(const double* error, int count, double budget, double range);
+// The same with the slope s = rampSlope(range) given.
+double rampPathWithSlope(const double* error, int count, double budget, double s);
 
 // Position of valid level `level` on the block's chain (the computeMorph rise limit's
 // continuous level is this plus the factor).
 int chainIndex(const Quadtree& qt, int block, int level);
 
 // lambda of block b (its chain from morphChain) on the path of its own errors for error
-// budget `budget` (stored-height units).
+// budget `budget` (stored-height units); `slope` is rampSlope(range) (MorphRamp::slope()).
 double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,
-  double range);
+  double slope);
 
 // lambda of block b (its chain) on the path that keeps the strip of a finer neighbour `nb` (level
 // `nbLevel`, its side `nbSide` facing b) within that neighbour's budget as b coarsens: the
@@ -84,7 +100,7 @@ double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int lin
 // is refined by fixStrips (SelectLevels.h) at once, which pops; this path gets there
 // smoothly instead.
 double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,
-  int nbSide, int nbLevel, double nbBudget, double range);
+  int nbSide, int nbLevel, double nbBudget, double slope);
 
 // The level and factor of continuous level `lambda` on `chain` (count levels).
 int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor);

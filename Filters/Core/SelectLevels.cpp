@@ -91,7 +91,7 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
   }
   MorphChain chain;
   const int links = morphChain(qt, b, chain);
-  const double lambda = rampedLambda(t, b, chain, links, budget, ramp->range);
+  const double lambda = rampedLambda(t, b, chain, links, budget, ramp->slope());
   float factor = 0.0f;
   const int m = levelOnChain(chain, links, lambda, factor);
   ramp->lambda[b] = lambda;
@@ -124,7 +124,7 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
         continue; // no strip of the neighbour joins this edge
       }
       lambda = std::min(lambda, rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, nbLevel,
-                                  budget[nb], ramp.range));
+                                  budget[nb], ramp.slope()));
     }
     if (lambda < ramp.lambda[b])
     {

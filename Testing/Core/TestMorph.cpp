@@ -303,3 +303,21 @@ TEST(Morph, NodataAndThinDEMs)
     }
   }
 }
+
+TEST(Morph, NextValidLevelIsTheFirstLevelWithAShape)
+{
+  // The closed form against its definition: the first level above m that blockShape allows.
+  for (int w = 1; w <= 70; ++w)
+    for (int h = 1; h <= 70; ++h)
+    {
+      const int top = gmm::topLevel(w, h);
+      for (int m = 0; m <= top; ++m)
+      {
+        int want = -1;
+        for (int n = m + 1; n <= top && want < 0; ++n)
+          if (gmm::blockShape(w, h, n) != gmm::BlockShape::Invalid)
+            want = n;
+        ASSERT_EQ(gmm::nextValidLevel(w, h, m), want) << w << " x " << h << ", level " << m;
+      }
+    }
+}

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 
 using namespace gmmtest;
 
@@ -258,4 +259,72 @@ TEST(MorphRamp, OnlyAFiniteRangeAboveOneFollowsThePath)
   path.update(v, 2.0);
   ASSERT_NE(path.morphRamp(), nullptr);
   EXPECT_NE(path.levels(), plain.levels()); // the path really changes the levels here
+}
+
+TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
+{
+  // The mapper keeps one MorphFrame and passes the engine's drawn blocks, so that a frame
+  // writes only what it draws and resets only what the last one wrote. Along a flight that
+  // jumps (whole new views, merged nodes coming and going), every entry must equal that of
+  // a frame computed from nothing: a fresh MorphFrame whose blocks are found in the levels.
+  // Both use caches with the same history, so the rise limit sees the same past.
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 193, 30.0, 5, 900.0, 1);
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+  e.setMorphRange(gmm::kDefaultMorphRange);
+  const double ext = 256 * 30.0;
+  gmm::MorphCache reusedCache, freshCache;
+  gmm::MorphFrame reused;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double x = 0.2 * ext, y = 0.3 * ext, heading = 0.3;
+  int compared = 0;
+  for (int f = 0; f < 90; ++f)
+  {
+    if (f % 9 == 8)
+    {
+      x = u(rng) * ext; // a jump: another part of the DEM, another direction
+      y = u(rng) * 192 * 30.0;
+      heading = u(rng) * 6.283;
+    }
+    x += 40.0 * std::cos(heading);
+    y += 40.0 * std::sin(heading);
+    gmm::View v;
+    v.eye = { x, y, 1200.0 + 600.0 * u(rng) };
+    v.forward = { std::cos(heading) * 0.9, std::sin(heading) * 0.9, -0.44 };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 50.0;
+    v.nearDistance = 1.0;
+    v.farDistance = 4.0 * ext;
+    const double tau = f % 13 == 0 ? 4.0 : 1.0;
+    e.update(v, tau);
+    ASSERT_EQ(e.lastError(), "");
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, reusedCache,
+      reused, e.morphRamp(), &e.drawnBlocks());
+    gmm::MorphFrame fresh;
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, freshCache,
+      fresh, e.morphRamp());
+    ASSERT_EQ(reused.blockT, fresh.blockT) << "frame " << f;
+    ASSERT_EQ(reused.blockTarget, fresh.blockTarget) << "frame " << f;
+    for (std::size_t k = 0; k < fresh.vEdges.size(); ++k)
+    {
+      ASSERT_EQ(reused.vEdges[k].level, fresh.vEdges[k].level) << "frame " << f << " edge " << k;
+      ASSERT_EQ(reused.vEdges[k].target, fresh.vEdges[k].target) << "frame " << f << " edge " << k;
+      ASSERT_EQ(reused.vEdges[k].t, fresh.vEdges[k].t) << "frame " << f << " edge " << k;
+    }
+    for (std::size_t k = 0; k < fresh.hEdges.size(); ++k)
+    {
+      ASSERT_EQ(reused.hEdges[k].level, fresh.hEdges[k].level) << "frame " << f << " edge " << k;
+      ASSERT_EQ(reused.hEdges[k].target, fresh.hEdges[k].target) << "frame " << f << " edge " << k;
+      ASSERT_EQ(reused.hEdges[k].t, fresh.hEdges[k].t) << "frame " << f << " edge " << k;
+    }
+    ASSERT_EQ(reused.maxBoundPixels, fresh.maxBoundPixels) << "frame " << f;
+    // The rise limit's history holds exactly this frame's drawn blocks.
+    for (int b = 0; b < e.quadtree().blockCount(); ++b)
+    {
+      ASSERT_EQ(reusedCache.lastLambda[b] >= 0.0, e.levels()[b] >= 0) << "frame " << f << " block " << b;
+    }
+    compared += !e.drawnBlocks().empty();
+  }
+  EXPECT_GE(compared, 60) << "too few frames drew anything";
 }
