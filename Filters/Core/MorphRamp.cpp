@@ -67,6 +67,15 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
   return std::min(std::max(lambda, 0.0), static_cast<double>(count - 1));
 }
 
+double rampPathFloor(int j, double errorJ, double budget, double s)
+{
+  // For y < errorJ the certificate's level is j - 1 + y / errorJ, and ln(x / y) >= 1 - y / x,
+  // so each candidate is at least j - 1 + y / errorJ + s (1 - y / x), linear in y: its least
+  // value on (0, min(errorJ, x)] is s or min(errorJ, x) / errorJ + s (1 - min / x) >= the
+  // smaller of 1 and x / errorJ. Candidates with y >= errorJ are at least j.
+  return j - 1 + std::min({ 1.0, s, budget / errorJ });
+}
+
 int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor)
 {
   const int k = std::min(std::max(static_cast<int>(lambda), 0), std::max(count - 1, 0));

@@ -84,6 +84,11 @@ double rampPath(const double* error, int count, double budget, double range);
 // The same with the slope s = rampSlope(range) given.
 double rampPathWithSlope(const double* error, int count, double budget, double s);
 
+// A floor under rampPathWithSlope for errors that are 0 below index j (>= 1) and errorJ
+// (finite, > 0) at j, whatever the errors above: j - 1 + min(1, s, budget / errorJ). No
+// logarithm: it lets a caller skip a path that cannot come below a level it already has.
+double rampPathFloor(int j, double errorJ, double budget, double s);
+
 // Position of valid level `level` on the block's chain (the computeMorph rise limit's
 // continuous level is this plus the factor).
 int chainIndex(const Quadtree& qt, int block, int level);

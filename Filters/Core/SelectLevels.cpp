@@ -123,6 +123,23 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
       {
         continue; // no strip of the neighbour joins this edge
       }
+      // The beside path's errors are 0 up to the first link coarser than the neighbour; a
+      // floor from that link alone skips most paths (rampPathFloor).
+      int j = 0;
+      while (j < links && chain[j] <= nbLevel)
+      {
+        ++j;
+      }
+      if (j >= links)
+      {
+        continue; // never coarser than the neighbour: the strip does not change
+      }
+      const double firstError = t.strip(nb, (side + 2) % 4, nbLevel, chain[j]);
+      if (j >= 1 && firstError > 0.0 && firstError <= std::numeric_limits<double>::max() &&
+        lambda <= rampPathFloor(j, firstError, budget[nb], ramp.slope()))
+      {
+        continue;
+      }
       lambda = std::min(lambda, rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, nbLevel,
                                   budget[nb], ramp.slope()));
     }

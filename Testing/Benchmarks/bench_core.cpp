@@ -6,12 +6,16 @@
 //   GEOMIPMAP_BENCH_THREADS=1 ...                                  # table build threads (0 = all)
 //
 // BM_LodFlightFar20km: the same flight with the far plane at 20 km.
+// BM_LodFlightMapperDefault: the whole-DEM flight with the CPU work the mapper does per frame
+// by default: Engine::update on geomorphing's level path (kDefaultMorphRange) and
+// computeMorph over the drawn blocks (the mapper draws the index arena: no concatenation).
 // Scene: synthetic terrain (gmm::makeSyntheticTerrain, 30 m spacing, seed 42), camera flying
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
 // tau = 1 px. Each benchmark iteration is one frame (Engine::update: cull + select +
 // tessellate, single thread); the flight loops after kFlightFrames frames.
 #include "Engine.h"
+#include "Morph.h"
 #include "SyntheticTerrain.h"
 
 #include <benchmark/benchmark.h>
@@ -150,7 +154,8 @@ Scene& scene(int size, int blockQuads)
 
 // farDistance: 0 keeps the flight's 10^6 m (the whole DEM ahead is in view); else the far
 // plane of a realistic viewer (terrain beyond it is left to fog or a horizon).
-void runFlight(benchmark::State& state, int size, int blockQuads, double farDistance = 0.0)
+void runFlight(benchmark::State& state, int size, int blockQuads, double farDistance = 0.0,
+  bool mapperDefault = false)
 {
   Scene& s = scene(size, blockQuads);
   std::vector<gmm::View> flight = s.flight; // the scene is shared by the other registrations
@@ -158,6 +163,9 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
     for (gmm::View& v : flight)
       v.farDistance = farDistance;
   gmm::Engine& e = *s.engine;
+  e.setMorphRange(mapperDefault ? gmm::kDefaultMorphRange : 0.0);
+  gmm::MorphCache morphCache;
+  gmm::MorphFrame morph;
   std::size_t frame = 0, triangles = 0, reused = 0, visible = 0, regenFrames = 0;
   double maxErr = 0, totalUs = 0, regenUs = 0;
   // warm up one frame so the first measured frame is not a cold start
@@ -166,7 +174,16 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   {
     const auto t0 = std::chrono::steady_clock::now();
     const gmm::FrameStats& st = e.update(flight[frame % flight.size()], 1.0);
-    benchmark::DoNotOptimize(e.indices().data());
+    if (mapperDefault)
+    {
+      gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 1.0, morphCache,
+        morph, e.morphRamp(), &e.drawnBlocks());
+      benchmark::DoNotOptimize(morph.blockT.data());
+    }
+    else
+    {
+      benchmark::DoNotOptimize(e.indices().data());
+    }
     const double us = seconds(t0) * 1e6;
     totalUs += us;
     if (!st.reused)
@@ -191,6 +208,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   state.counters["table_build_s"] = s.tableSeconds;
   state.counters["fullres_ms"] = s.fullResSeconds * 1e3;
   state.counters["fullres_tris"] = static_cast<double>(s.fullResTriangles);
+  e.setMorphRange(0.0); // the scene's engine is shared by the other registrations
 }
 
 void BM_FullResolutionIndices(benchmark::State& state)
@@ -230,6 +248,11 @@ int main(int argc, char** argv)
       ->MinTime(2.0);
     benchmark::RegisterBenchmark(("BM_LodFlightFar20km/" + std::to_string(s)).c_str(),
       [s](benchmark::State& st) { runFlight(st, s, 64, 20000.0); })
+      ->Unit(benchmark::kMicrosecond)
+      ->UseRealTime()
+      ->MinTime(2.0);
+    benchmark::RegisterBenchmark(("BM_LodFlightMapperDefault/" + std::to_string(s)).c_str(),
+      [s](benchmark::State& st) { runFlight(st, s, 64, 0.0, true); })
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);

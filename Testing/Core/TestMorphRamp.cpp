@@ -328,3 +328,31 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
   }
   EXPECT_GE(compared, 60) << "too few frames drew anything";
 }
+
+TEST(MorphRamp, FloorIsBelowThePath)
+{
+  // rampPathFloor lets the selection skip beside paths; it must never be above the path
+  // (else a block would coarsen past what its neighbour's strip allows).
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int tight = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const int count = 2 + static_cast<int>(u(rng) * 7);
+    const int j = 1 + static_cast<int>(u(rng) * (count - 1));
+    std::vector<double> e(count, 0.0);
+    double v = std::exp(6.0 * u(rng) - 3.0);
+    for (int k = j; k < count; ++k)
+    {
+      e[k] = v;
+      v *= 1.0 + 3.0 * u(rng) * u(rng); // non-decreasing, sometimes flat
+    }
+    const double range = 1.2 + 6.0 * u(rng), s = gmm::rampSlope(range);
+    const double x = e[j] * std::exp(8.0 * u(rng) - 4.0);
+    const double path = gmm::rampPathWithSlope(e.data(), count, x, s);
+    const double floor = gmm::rampPathFloor(j, e[j], x, s);
+    ASSERT_LE(floor, path + 1e-12) << "trial " << trial << ": j " << j << ", x " << x << ", range " << range;
+    tight += path - floor < 0.1;
+  }
+  EXPECT_GT(tight, 1000) << "the floor is too loose to skip anything";
+}
