@@ -96,8 +96,22 @@ def scene(dem_image, drape_image=None, lit=False, lut=None):
     ren = vtkRenderer()
     ren.SetBackground(*BG)
     ren.AddActor(actor)
-    win = refscene.window(W, H, ren)
-    return mapper, ren, win
+    return mapper, ren, shared_window(ren)
+
+
+_WINDOW = []
+
+
+def shared_window(ren):
+    """One window for every render of this test, showing `ren` alone. A window per render
+    opened a dozen X connections within two seconds, and once in a few parallel ctest runs
+    the X server refused one (VTK then aborts: "bad X server connection")."""
+    if not _WINDOW:
+        _WINDOW.append(refscene.window(W, H))
+    win = _WINDOW[0]
+    win.GetRenderers().RemoveAllItems()
+    win.AddRenderer(ren)
+    return win
 
 
 def top_down(ren, cx, cy):
@@ -121,7 +135,7 @@ def render(dem_image, drape_image, cx, cy, **kw):
     top_down(ren, cx, cy)
     win.Render()
     px = refscene.grab(win).astype(int)
-    win.Finalize()
+    win.RemoveRenderer(ren)
     return px, errors.messages
 
 
