@@ -509,6 +509,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   this->LastFrameDrawn = this->LastFrameFrozen = false;
   this->LastUpdateTime = this->LastIndexUploadTime = 0.0;
   this->LastIndexUploadBytes = 0;
+  this->LastMorphUploadBytes = 0;
   this->LastRenderTime = this->LastAllocatedRenderTime = 0.0;
   this->LastFragmentsPassed = 0;
   // The budget (and whether this frame is timed) first: a timed frame starts with the GPU
@@ -628,6 +629,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     }
     const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
     in.Morphing = merr.empty();
+    this->LastMorphUploadBytes = static_cast<vtkTypeInt64>(in.MorphTexture.GetLastUploadBytes());
     if (!merr.empty() && merr != in.ReportedMorphError)
     {
       vtkWarningMacro(<< merr);

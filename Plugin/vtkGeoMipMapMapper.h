@@ -355,6 +355,13 @@ public:
   ///@}
 
   /**
+   * Bytes of geomorph factors uploaded for the last rendered frame: only the rows of the
+   * morph texture where a block's or an edge's factor changed (0 for a still camera, or with
+   * Geomorphing off).
+   */
+  vtkGetMacro(LastMorphUploadBytes, vtkTypeInt64);
+
+  /**
    * Bytes held on the GPU: height, colour, lookup-table and drape textures and the index
    * buffer.
    */
@@ -449,6 +456,7 @@ protected:
   int NumberOfIndexUploads = 0;
   double LastIndexUploadTime = 0.0;
   vtkTypeInt64 LastIndexUploadBytes = 0;
+  vtkTypeInt64 LastMorphUploadBytes = 0;
   double LastHeightUploadTime = 0.0;
   double LastTerrainBuildTime = 0.0;
   bool LastTablesFromCache = false;

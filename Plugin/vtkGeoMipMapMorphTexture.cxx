@@ -4,6 +4,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtk_glew.h"
 
 #include "Morph.h"
 
@@ -12,9 +13,100 @@
 vtkGeoMipMapMorphTexture::vtkGeoMipMapMorphTexture() = default;
 vtkGeoMipMapMorphTexture::~vtkGeoMipMapMorphTexture() = default;
 
+namespace
+{
+// Where block b's texel and its four edges' texels are (x, y), South, East, North, West.
+struct BlockTexels
+{
+  int x[5], y[5];
+};
+
+BlockTexels texelsOf(const gmm::Quadtree& qt, int b)
+{
+  const int bc = qt.blockCols, br = qt.blockRows, c = b % bc, r = b / bc;
+  return BlockTexels{ { c, c, c + 1, c, c }, { r, 2 * br + r, br + r, 2 * br + r + 1, br + r } };
+}
+
+// The (target, factor) pairs of block b and of its edges in a frame, as Build writes them.
+void valuesOf(const gmm::Quadtree& qt, const gmm::MorphFrame& f, int b, float (&v)[5][2])
+{
+  const int bc = qt.blockCols, c = b % bc, r = b / bc;
+  v[0][0] = f.blockTarget[b];
+  v[0][1] = f.blockTarget[b] >= 0 ? f.blockT[b] : 0.0f;
+  const gmm::MorphEdge* e[4] = { &f.hEdges[static_cast<size_t>(r) * bc + c],
+    &f.vEdges[static_cast<size_t>(r) * (bc + 1) + c + 1], &f.hEdges[static_cast<size_t>(r + 1) * bc + c],
+    &f.vEdges[static_cast<size_t>(r) * (bc + 1) + c] };
+  for (int k = 0; k < 4; ++k)
+  {
+    v[k + 1][0] = e[k]->target;
+    v[k + 1][1] = e[k]->target >= 0 ? e[k]->t : 0.0f;
+  }
+}
+} // namespace
+
 std::string vtkGeoMipMapMorphTexture::Update(
   vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt, const gmm::MorphFrame& frame)
 {
+  const int bc = qt.blockCols, br = qt.blockRows;
+  const int width = std::max(bc, br) + 1, height = 3 * br + 3;
+  const bool sameLayout = this->Blocks[0] == bc && this->Blocks[1] == br && this->Size[0] == width &&
+    this->Size[1] == height && this->Texture->GetHandle() != 0 && this->Texture->GetContext() == win &&
+    frame.blockT.size() == static_cast<size_t>(bc) * br;
+  if (!sameLayout)
+  {
+    return this->Build(win, qt, frame);
+  }
+  // Rewrite the texels of the blocks drawn at the last upload (the frame has reset theirs)
+  // and of those drawn now; upload the rows between the first and last that changed.
+  int rowLo = height, rowHi = -1;
+  auto rewrite = [&](int b) {
+    const BlockTexels t = texelsOf(qt, b);
+    float v[5][2];
+    valuesOf(qt, frame, b, v);
+    for (int k = 0; k < 5; ++k)
+    {
+      float* p = &this->Data[(static_cast<size_t>(t.y[k]) * width + t.x[k]) * 2];
+      if (p[0] != v[k][0] || p[1] != v[k][1])
+      {
+        p[0] = v[k][0];
+        p[1] = v[k][1];
+        rowLo = std::min(rowLo, t.y[k]);
+        rowHi = std::max(rowHi, t.y[k]);
+      }
+    }
+  };
+  for (int b : this->Written)
+  {
+    rewrite(b);
+  }
+  for (int b : frame.blocks)
+  {
+    rewrite(b);
+  }
+  this->Written = frame.blocks;
+  this->LastUploadBytes = 0;
+  if (rowHi >= rowLo)
+  {
+    // Activate takes a texture unit of its own (Bind alone would rebind whatever texture
+    // the active unit holds, e.g. the actor's), as Create2DFromRaw does.
+    this->Texture->Activate();
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, rowLo, width, rowHi - rowLo + 1, GL_RG, GL_FLOAT,
+      &this->Data[static_cast<size_t>(rowLo) * width * 2]);
+    this->Texture->Deactivate();
+    this->LastUploadBytes = static_cast<size_t>(rowHi - rowLo + 1) * width * 2 * sizeof(float);
+  }
+  return std::string();
+}
+
+std::string vtkGeoMipMapMorphTexture::Build(
+  vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt, const gmm::MorphFrame& frame)
+{
+  this->Blocks[0] = this->Blocks[1] = 0;
+  this->Size[0] = this->Size[1] = 0;
+  this->Written.clear();
+  this->LastUploadBytes = 0;
+
   const int bc = qt.blockCols, br = qt.blockRows;
   const int width = std::max(bc, br) + 1, height = 3 * br + 3;
   const int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
@@ -70,6 +162,10 @@ std::string vtkGeoMipMapMorphTexture::Update(
   {
     return "geomorphing: the RG32F texture could not be created: drawn unmorphed";
   }
+  this->Size[0] = width;
+  this->Size[1] = height;
+  this->Written = frame.blocks;
+  this->LastUploadBytes = this->GetBytes();
   return std::string();
 }
 

@@ -11,6 +11,12 @@
  *   row 3 br + 1:          colStart (bc + 1 values), row 3 br + 2: rowStart (br + 1)
  * with bc x br blocks. It is the only data uploaded per frame for morphing (a few bytes
  * per block); nothing per vertex. Lives in one OpenGL context.
+ *
+ * Per frame only the texels of the blocks drawn now or at the last upload (gmm::MorphFrame
+ * ::blocks) and their edges are rewritten, and only the rows where a texel changed are
+ * uploaded (glTexSubImage2D): a still camera uploads nothing, and the CPU work follows the
+ * drawn blocks, not the DEM (65 536 blocks at 16385², block 64). A new layout or context
+ * builds the texture whole.
  * Not wrapped, not installed: private to geomipmap::Rendering.
  */
 #ifndef vtkGeoMipMapMorphTexture_h
@@ -52,15 +58,22 @@ public:
   void Release(vtkWindow* win);
   void Forget();
   size_t GetBytes() const { return this->Data.size() * sizeof(float); }
+  /** Bytes the last Update uploaded (0 when no texel changed). */
+  size_t GetLastUploadBytes() const { return this->LastUploadBytes; }
 
 private:
   vtkGeoMipMapMorphTexture(const vtkGeoMipMapMorphTexture&) = delete;
   void operator=(const vtkGeoMipMapMorphTexture&) = delete;
 
+  std::string Build(vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt, const gmm::MorphFrame& frame);
+
   vtkNew<vtkTextureObject> Texture;
   std::vector<float> Data;
+  std::vector<int> Written; // the blocks whose texels the last upload set from a frame
   int Blocks[2] = { 0, 0 };
+  int Size[2] = { 0, 0 };
   int Unit = -1;
+  size_t LastUploadBytes = 0;
 };
 
 #endif

@@ -166,6 +166,23 @@ check(np.count_nonzero(seen) > 0.3 * W * H and flight_off <= 0.002 * np.count_no
       f"{np.count_nonzero(seen)} pixels differ in depth)")
 check(fresh_off > 20 * max(flight_off, 1),
       f"... which a fresh filter's does not: {fresh_off} pixels differ (the rise limit's history)")
+# The morph texture is rewritten only where a factor changed: a frozen frame keeps its
+# factors, so after the first (which rebuilds the texture: removing the actor from the
+# renderer above released it) it uploads none, and draws the flight's last depth.
+moved = flier.GetLastMorphUploadBytes()
+ren.RemoveAllViewProps()  # depth_of left the first mapper's actor
+ren.AddActor(flier_actor)
+flier.FreezeLevelOfDetailOn()
+win.Render()
+rebuilt = flier.GetLastMorphUploadBytes()
+win.Render()
+check(moved > 0 and rebuilt > 0 and flier.GetLastMorphUploadBytes() == 0,
+      f"a second frozen frame uploads no geomorph factors ({flier.GetLastMorphUploadBytes()} bytes; "
+      f"the first {rebuilt}, the last moving frame {moved})")
+check(np.array_equal(refscene.depth(win), gpu_flight), "... and draws the same depth as the flight's last frame")
+flier.FreezeLevelOfDetailOff()
+ren.RemoveAllViewProps()
+ren.AddActor(actor)
 cam.SetPosition(*start)
 
 mapper.GeomorphingOff()
