@@ -57,8 +57,10 @@ std::string vtkGeoMipMapMorphTexture::Update(
     return this->Build(win, qt, frame);
   }
   // Rewrite the texels of the blocks drawn at the last upload (the frame has reset theirs)
-  // and of those drawn now; upload the rows between the first and last that changed.
-  int rowLo = height, rowHi = -1;
+  // and of those drawn now; upload, row by row, the span of each row that changed (the
+  // drawn blocks of a wide view are a wedge near the eye: most rows change in a short span).
+  this->SpanLo.assign(static_cast<size_t>(height), width);
+  this->SpanHi.assign(static_cast<size_t>(height), -1);
   auto rewrite = [&](int b) {
     const BlockTexels t = texelsOf(qt, b);
     float v[5][2];
@@ -70,8 +72,8 @@ std::string vtkGeoMipMapMorphTexture::Update(
       {
         p[0] = v[k][0];
         p[1] = v[k][1];
-        rowLo = std::min(rowLo, t.y[k]);
-        rowHi = std::max(rowHi, t.y[k]);
+        this->SpanLo[t.y[k]] = std::min(this->SpanLo[t.y[k]], t.x[k]);
+        this->SpanHi[t.y[k]] = std::max(this->SpanHi[t.y[k]], t.x[k]);
       }
     }
   };
@@ -85,16 +87,29 @@ std::string vtkGeoMipMapMorphTexture::Update(
   }
   this->Written = frame.blocks;
   this->LastUploadBytes = 0;
-  if (rowHi >= rowLo)
+  bool active = false;
+  for (int y = 0; y < height; ++y)
   {
-    // Activate takes a texture unit of its own (Bind alone would rebind whatever texture
-    // the active unit holds, e.g. the actor's), as Create2DFromRaw does.
-    this->Texture->Activate();
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, rowLo, width, rowHi - rowLo + 1, GL_RG, GL_FLOAT,
-      &this->Data[static_cast<size_t>(rowLo) * width * 2]);
+    const int lo = this->SpanLo[static_cast<size_t>(y)], hi = this->SpanHi[static_cast<size_t>(y)];
+    if (hi < lo)
+    {
+      continue;
+    }
+    if (!active)
+    {
+      // Activate takes a texture unit of its own (Bind alone would rebind whatever
+      // texture the active unit holds, e.g. the actor's), as Create2DFromRaw does.
+      this->Texture->Activate();
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      active = true;
+    }
+    glTexSubImage2D(GL_TEXTURE_2D, 0, lo, y, hi - lo + 1, 1, GL_RG, GL_FLOAT,
+      &this->Data[(static_cast<size_t>(y) * width + lo) * 2]);
+    this->LastUploadBytes += static_cast<size_t>(hi - lo + 1) * 2 * sizeof(float);
+  }
+  if (active)
+  {
     this->Texture->Deactivate();
-    this->LastUploadBytes = static_cast<size_t>(rowHi - rowLo + 1) * width * 2 * sizeof(float);
   }
   return std::string();
 }

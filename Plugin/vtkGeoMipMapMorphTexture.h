@@ -13,8 +13,8 @@
  * per block); nothing per vertex. Lives in one OpenGL context.
  *
  * Per frame only the texels of the blocks drawn now or at the last upload (gmm::MorphFrame
- * ::blocks) and their edges are rewritten, and only the rows where a texel changed are
- * uploaded (glTexSubImage2D): a still camera uploads nothing, and the CPU work follows the
+ * ::blocks) and their edges are rewritten, and only each row's span of changed texels is
+ * uploaded (glTexSubImage2D): a frozen frame uploads nothing, and the CPU work follows the
  * drawn blocks, not the DEM (65 536 blocks at 16385², block 64). A new layout or context
  * builds the texture whole.
  * Not wrapped, not installed: private to geomipmap::Rendering.
@@ -70,6 +70,7 @@ private:
   vtkNew<vtkTextureObject> Texture;
   std::vector<float> Data;
   std::vector<int> Written; // the blocks whose texels the last upload set from a frame
+  std::vector<int> SpanLo, SpanHi; // per row, the texels an Update changed (scratch)
   int Blocks[2] = { 0, 0 };
   int Size[2] = { 0, 0 };
   int Unit = -1;
