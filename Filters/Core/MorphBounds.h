@@ -35,6 +35,10 @@ struct PartErrors
 // Bound of a strip at factors (te, tb): bilinear in the four corner errors.
 double stripBound(const double e[4], double te, double tb);
 
+// Largest t in [0, 1] with stripBound(e, t, t) <= limit on all of [0, t] (0 when it does
+// not hold at 0): how far a block and an edge it sets may morph together.
+double diagonalReach(const double e[4], double limit);
+
 // Errors of every part of `block` drawn with `config`, its interior moving toward level
 // `target` (-1: not moving) and side s's edge toward `edgeTarget[s]` (-1: not moving).
 PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,

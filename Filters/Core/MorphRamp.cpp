@@ -17,11 +17,19 @@ double rampSlope(double range)
 
 int morphChain(const Quadtree& qt, int b, MorphChain& chain)
 {
+  // nextValidLevel unrolled: 0, the ring levels 1, 2, ... (2^m below the narrow side), then
+  // the top level.
   const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+  const int top = topLevel(w, h), narrow = std::min(w, h);
   int count = 0;
-  for (int m = 0; m >= 0 && count < static_cast<int>(chain.size()); m = nextValidLevel(w, h, m))
+  chain[count++] = 0;
+  for (int m = 1; m < top && (1LL << m) < narrow && count + 1 < static_cast<int>(chain.size()); ++m)
   {
     chain[count++] = static_cast<int8_t>(m);
+  }
+  if (chain[count - 1] < top)
+  {
+    chain[count++] = static_cast<int8_t>(top);
   }
   return count;
 }

@@ -321,3 +321,49 @@ TEST(Morph, NextValidLevelIsTheFirstLevelWithAShape)
       }
     }
 }
+
+TEST(Morph, DiagonalReachIsTheFirstCrossing)
+{
+  // The closed form against a bisection of its definition (the largest t with the strip's
+  // bound within the limit on all of [0, t]) over random corner errors and limits: the
+  // bound holds on [0, t] (checked with stripBound itself), and t is not more than 1e-9
+  // below the bisection's.
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int partial = 0;
+  for (int trial = 0; trial < 50000; ++trial)
+  {
+    double e[4];
+    for (double& x : e)
+      x = u(rng) < 0.1 ? 0.0 : std::exp(8.0 * u(rng) - 4.0);
+    const double limit = e[0] + (u(rng) < 0.05 ? 0.0 : std::exp(8.0 * u(rng) - 5.0));
+    // The definition on 65 points of [0, t], exactly (the reference) or up to rounding
+    // (stripBound and the parabola round differently).
+    auto within = [&](double t, double slack) {
+      for (int k = 0; k <= 64; ++k)
+        if (gmm::stripBound(e, t * k / 64.0, t * k / 64.0) > limit * (1.0 + slack))
+          return false;
+      return true;
+    };
+    // The reference: the definition bisected with the parabola and its vertex (what the
+    // engine did before the closed form).
+    const double c = e[0], b = e[1] + e[2] - 2.0 * e[0], a = e[0] - e[1] - e[2] + e[3];
+    auto q = [&](double x) { return c + x * (b + x * a); };
+    const double vertex = a < 0.0 ? -b / (2.0 * a) : -1.0;
+    auto ok = [&](double x) { return q(x) <= limit && !(vertex > 0.0 && vertex < x && q(vertex) > limit); };
+    double lo = 0.0, hi = 1.0;
+    if (ok(1.0))
+      lo = 1.0;
+    else
+      for (int n = 0; n < 60; ++n)
+      {
+        const double mid = 0.5 * (lo + hi);
+        (ok(mid) ? lo : hi) = mid;
+      }
+    const double t = gmm::diagonalReach(e, limit);
+    ASSERT_TRUE(within(t, 1e-12)) << "trial " << trial << ": t " << t << " breaks the bound";
+    ASSERT_GE(t, lo - 1e-9) << "trial " << trial;
+    partial += t > 0.0 && t < 1.0;
+  }
+  EXPECT_GT(partial, 5000);
+}

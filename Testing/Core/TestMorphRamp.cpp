@@ -11,6 +11,7 @@
 //   every sample in view) is several times smaller than with the plain certificate factors.
 #include "CoreTestUtil.h"
 #include "Engine.h"
+#include "Levels.h"
 #include "Morph.h"
 #include "MorphRamp.h"
 #include "MorphTestUtil.h"
@@ -355,4 +356,32 @@ TEST(MorphRamp, FloorIsBelowThePath)
     tight += path - floor < 0.1;
   }
   EXPECT_GT(tight, 1000) << "the floor is too loose to skip anything";
+}
+
+TEST(MorphRamp, ChainFollowsNextValidLevel)
+{
+  // morphChain unrolls nextValidLevel: the same links for every block shape of a DEM with
+  // blocks of many sizes.
+  for (int n : { 2, 3, 5, 9, 17, 40, 65, 100, 130 })
+    for (int block : { 4, 8, 16, 64 })
+    {
+      gmm::Heightfield hf;
+      hf.nx = n;
+      hf.ny = n / 2 + 2;
+      hf.dx = hf.dy = 1.0;
+      hf.z.assign(static_cast<std::size_t>(hf.nx) * hf.ny, 0.0f);
+      const gmm::Quadtree qt = gmm::buildQuadtree(hf, block);
+      for (int b = 0; b < qt.blockCount(); ++b)
+      {
+        gmm::MorphChain chain;
+        const int links = gmm::morphChain(qt, b, chain);
+        int k = 0;
+        for (int m = 0; m >= 0; m = gmm::nextValidLevel(qt.blockWidth(b), qt.blockHeight(b), m), ++k)
+        {
+          ASSERT_LT(k, links) << n << " samples, block " << b;
+          ASSERT_EQ(chain[k], m) << n << " samples, block " << b << ", link " << k;
+        }
+        ASSERT_EQ(k, links) << n << " samples, block " << b;
+      }
+    }
 }
