@@ -122,15 +122,15 @@ double diagonalReach(const double e[4], double limit)
     }
   }
   t = std::min(std::max(t, 0.0), 1.0);
-  for (int step = 0; step < 64 && t > 0.0 && !ok(t); ++step)
+  for (int step = 0; step < 8 && t > 0.0 && !ok(t); ++step)
   {
-    t = std::nextafter(t, 0.0) * (step < 8 ? 1.0 : 1.0 - std::ldexp(1.0, step - 60));
+    t = std::nextafter(t, 0.0); // the root's rounding
   }
   if (ok(t))
   {
     return t;
   }
-  double lo = 0.0, hi = t; // rounding far worse than expected: bisect as before
+  double lo = 0.0, hi = t; // rounding worse than a few ulps: bisect below the root
   for (int n = 0; n < 50; ++n)
   {
     const double mid = 0.5 * (lo + hi);
@@ -152,16 +152,23 @@ double linearReach(double a, double b, double limit)
   return b > a ? clamp01((limit - a) / (b - a)) : 0.0;
 }
 
-// The four edges of block (c, r) in a frame: South, East, North, West (Tessellate's Side).
-std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int c, int r)
+// blockEdges of a frame being written.
+std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int block)
 {
-  const int bc = qt.blockCols;
+  const std::array<const MorphEdge*, 4> e = blockEdges(qt, f, block);
+  return { const_cast<MorphEdge*>(e[0]), const_cast<MorphEdge*>(e[1]), const_cast<MorphEdge*>(e[2]),
+    const_cast<MorphEdge*>(e[3]) };
+}
+} // namespace
+
+std::array<const MorphEdge*, 4> blockEdges(const Quadtree& qt, const MorphFrame& f, int block)
+{
+  const int bc = qt.blockCols, c = block % bc, r = block / bc;
   return { &f.hEdges[static_cast<std::size_t>(r) * bc + c],
     &f.vEdges[static_cast<std::size_t>(r) * (bc + 1) + c + 1],
     &f.hEdges[static_cast<std::size_t>(r + 1) * bc + c],
     &f.vEdges[static_cast<std::size_t>(r) * (bc + 1) + c] };
 }
-} // namespace
 
 void clearMorph(const Quadtree& qt, MorphFrame& out)
 {
@@ -190,7 +197,7 @@ void resetMorph(const Quadtree& qt, MorphFrame& out)
   {
     out.blockT[b] = 0.0f;
     out.blockTarget[b] = -1;
-    for (MorphEdge* e : edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols))
+    for (MorphEdge* e : edgesOf(qt, out, b))
     {
       *e = MorphEdge();
     }
@@ -237,7 +244,6 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
     return std::isfinite(f) && f > 0.0 ? tau / f : -1.0; // -1: does not morph
   };
-  auto edgesOfBlock = [&](int b) { return edgesOf(qt, out, b % qt.blockCols, b / qt.blockCols); };
 
   // Edge levels and targets: an edge takes the level of the coarser block (Tessellate) and
   // moves toward the next level of the block(s) that set it.
@@ -256,7 +262,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     // agree), the block's top level beside a merged node (corners only: nothing on the
     // edge moves, and the node's fan keeps its perimeter still).
     const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
     for (int side = 0; side < 4; ++side)
     {
       edges[side]->level = static_cast<int8_t>(std::max<int>(edges[side]->level, cfg.edgeLevel[side]));
@@ -268,7 +274,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     {
       continue;
     }
-    for (MorphEdge* e : edgesOfBlock(b))
+    for (MorphEdge* e : edgesOf(qt, out, b))
     {
       if (e->level == levels[b])
       {
@@ -290,7 +296,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       continue;
     }
     const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
     std::array<int8_t, 10> key{ static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
       static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
       static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
@@ -341,7 +347,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   // sides' strips fit their budgets with their blocks' factors.
   for (int b : drawn)
   {
-    for (MorphEdge* e : edgesOfBlock(b))
+    for (MorphEdge* e : edgesOf(qt, out, b))
     {
       if (e->target >= 0 && e->level == levels[b])
       {
@@ -352,7 +358,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
-    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
     for (int side = 0; side < 4; ++side)
     {
       MorphEdge& e = *edges[side];
@@ -383,7 +389,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const PartErrors& pe = *parts[k];
     const double tb = out.blockT[b];
     double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
-    const std::array<MorphEdge*, 4> edges = edgesOfBlock(b);
+    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
     for (int side = 0; side < 4; ++side)
     {
       bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));
@@ -444,7 +450,7 @@ double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<
 {
   const int c = bandOf(qt.colStart, i), r = bandOf(qt.rowStart, j);
   const int b = qt.blockIndex(c, r);
-  const std::array<MorphEdge*, 4> edges = edgesOf(qt, const_cast<MorphFrame&>(frame), c, r);
+  const std::array<const MorphEdge*, 4> edges = blockEdges(qt, frame, b);
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
   const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
   *factorOut = 0.0;

@@ -96,6 +96,9 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
   const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr);
 
+// The four edges of `block` in a frame: South, East, North, West (Tessellate's Side).
+std::array<const MorphEdge*, 4> blockEdges(const Quadtree& qt, const MorphFrame& f, int block);
+
 // No morphing at all: every factor 0 (what a frame with geomorphing off draws).
 void clearMorph(const Quadtree& qt, MorphFrame& out);
 
