@@ -9,12 +9,20 @@
 #include "Morph.h"
 
 #include <algorithm>
+#include <array>
 
 vtkGeoMipMapMorphTexture::vtkGeoMipMapMorphTexture() = default;
 vtkGeoMipMapMorphTexture::~vtkGeoMipMapMorphTexture() = default;
 
 namespace
 {
+// The texture's width and height for a quadtree (the layout in the header).
+void textureSize(const gmm::Quadtree& qt, int& width, int& height)
+{
+  width = std::max(qt.blockCols, qt.blockRows) + 1;
+  height = 3 * qt.blockRows + 3;
+}
+
 // Where block b's texel and its four edges' texels are (x, y), South, East, North, West.
 struct BlockTexels
 {
@@ -27,19 +35,29 @@ BlockTexels texelsOf(const gmm::Quadtree& qt, int b)
   return BlockTexels{ { c, c, c + 1, c, c }, { r, 2 * br + r, br + r, 2 * br + r + 1, br + r } };
 }
 
-// The (target, factor) pairs of block b and of its edges in a frame, as Build writes them.
-void valuesOf(const gmm::Quadtree& qt, const gmm::MorphFrame& f, int b, float (&v)[5][2])
+// Writes the (target, factor) texels of block b and of its four edges from a frame into
+// `data` (width texels a row); changed(x, y) is told of each texel whose value changed.
+template <typename Changed>
+void writeBlock(std::vector<float>& data, int width, const gmm::Quadtree& qt,
+  const gmm::MorphFrame& f, int b, Changed changed)
 {
-  const int bc = qt.blockCols, c = b % bc, r = b / bc;
-  v[0][0] = f.blockTarget[b];
-  v[0][1] = f.blockTarget[b] >= 0 ? f.blockT[b] : 0.0f;
-  const gmm::MorphEdge* e[4] = { &f.hEdges[static_cast<size_t>(r) * bc + c],
-    &f.vEdges[static_cast<size_t>(r) * (bc + 1) + c + 1], &f.hEdges[static_cast<size_t>(r + 1) * bc + c],
-    &f.vEdges[static_cast<size_t>(r) * (bc + 1) + c] };
+  const BlockTexels t = texelsOf(qt, b);
+  const std::array<const gmm::MorphEdge*, 4> e = gmm::blockEdges(qt, f, b);
+  float v[5][2] = { { static_cast<float>(f.blockTarget[b]), f.blockTarget[b] >= 0 ? f.blockT[b] : 0.0f } };
   for (int k = 0; k < 4; ++k)
   {
     v[k + 1][0] = e[k]->target;
     v[k + 1][1] = e[k]->target >= 0 ? e[k]->t : 0.0f;
+  }
+  for (int k = 0; k < 5; ++k)
+  {
+    float* p = &data[(static_cast<size_t>(t.y[k]) * width + t.x[k]) * 2];
+    if (p[0] != v[k][0] || p[1] != v[k][1])
+    {
+      p[0] = v[k][0];
+      p[1] = v[k][1];
+      changed(t.x[k], t.y[k]);
+    }
   }
 }
 } // namespace
@@ -48,7 +66,8 @@ std::string vtkGeoMipMapMorphTexture::Update(
   vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt, const gmm::MorphFrame& frame)
 {
   const int bc = qt.blockCols, br = qt.blockRows;
-  const int width = std::max(bc, br) + 1, height = 3 * br + 3;
+  int width = 0, height = 0;
+  textureSize(qt, width, height);
   const bool sameLayout = this->Blocks[0] == bc && this->Blocks[1] == br && this->Size[0] == width &&
     this->Size[1] == height && this->Texture->GetHandle() != 0 && this->Texture->GetContext() == win &&
     frame.blockT.size() == static_cast<size_t>(bc) * br;
@@ -62,20 +81,10 @@ std::string vtkGeoMipMapMorphTexture::Update(
   this->SpanLo.assign(static_cast<size_t>(height), width);
   this->SpanHi.assign(static_cast<size_t>(height), -1);
   auto rewrite = [&](int b) {
-    const BlockTexels t = texelsOf(qt, b);
-    float v[5][2];
-    valuesOf(qt, frame, b, v);
-    for (int k = 0; k < 5; ++k)
-    {
-      float* p = &this->Data[(static_cast<size_t>(t.y[k]) * width + t.x[k]) * 2];
-      if (p[0] != v[k][0] || p[1] != v[k][1])
-      {
-        p[0] = v[k][0];
-        p[1] = v[k][1];
-        this->SpanLo[t.y[k]] = std::min(this->SpanLo[t.y[k]], t.x[k]);
-        this->SpanHi[t.y[k]] = std::max(this->SpanHi[t.y[k]], t.x[k]);
-      }
-    }
+    writeBlock(this->Data, width, qt, frame, b, [this](int x, int y) {
+      this->SpanLo[y] = std::min(this->SpanLo[y], x);
+      this->SpanHi[y] = std::max(this->SpanHi[y], x);
+    });
   };
   for (int b : this->Written)
   {
@@ -123,7 +132,8 @@ std::string vtkGeoMipMapMorphTexture::Build(
   this->LastUploadBytes = 0;
 
   const int bc = qt.blockCols, br = qt.blockRows;
-  const int width = std::max(bc, br) + 1, height = 3 * br + 3;
+  int width = 0, height = 0;
+  textureSize(qt, width, height);
   const int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
   if (width > maxSize || height > maxSize)
   {
@@ -141,26 +151,10 @@ std::string vtkGeoMipMapMorphTexture::Build(
     t[0] = a;
     t[1] = b;
   };
-  for (int r = 0; r < br; ++r)
+  // Every edge is one of some block's four: the blocks write every block and edge texel.
+  for (int b = 0; b < qt.blockCount(); ++b)
   {
-    for (int c = 0; c < bc; ++c)
-    {
-      const int b = qt.blockIndex(c, r);
-      put(c, r, frame.blockTarget[b], frame.blockTarget[b] >= 0 ? frame.blockT[b] : 0.0f);
-    }
-    for (int line = 0; line <= bc; ++line)
-    {
-      const gmm::MorphEdge& e = frame.vEdges[static_cast<size_t>(r) * (bc + 1) + line];
-      put(line, br + r, e.target, e.target >= 0 ? e.t : 0.0f);
-    }
-  }
-  for (int line = 0; line <= br; ++line)
-  {
-    for (int c = 0; c < bc; ++c)
-    {
-      const gmm::MorphEdge& e = frame.hEdges[static_cast<size_t>(line) * bc + c];
-      put(c, 2 * br + line, e.target, e.target >= 0 ? e.t : 0.0f);
-    }
+    writeBlock(this->Data, width, qt, frame, b, [](int, int) {});
   }
   for (int c = 0; c <= bc; ++c)
   {
