@@ -255,14 +255,15 @@ def lod_actor_modes(image, flight, args, size, out):
         still = refscene.covered(refscene.grab(s.win), (0, 0, 0)).mean()  # full mesh's coverage
         s.win.SetDesiredUpdateRate(args.fps)
         times, measured, uncovered, surface = [], [], [], 0
+        checked = measured_frames(flight, args)
         for k in range(len(flight)):
             times.append(s.frame(flight, k))
-            if name == "vtkLODActor" and k in measured_frames(flight, args):
+            if name == "vtkLODActor" and k in checked:
                 # What it drew is told from this frame's image (a read-back).
                 cov = refscene.covered(refscene.grab(s.win), (0, 0, 0)).mean()
                 surface += cov > 0.5 * still
         if name == "vtkQuadricLODActor":
-            for k in measured_frames(flight, args):  # after the flight, as for ours
+            for k in checked:  # after the flight, as for ours
                 flight.apply(s.ren, k)
                 e, u = screen_error(image, s.ren, a.GetLODFilter().GetOutput(), size)
                 measured.append(e)
@@ -276,8 +277,7 @@ def lod_actor_modes(image, flight, args, size, out):
                       "uncovered_fraction_max": max(uncovered),
                       "lod_triangles": a.GetLODFilter().GetOutput().GetNumberOfPolys()})
         if name == "vtkLODActor":
-            n = len(range(WARMUP, len(flight), args.measure_every))
-            r["frames_drawing_a_surface"] = f"{surface} of {n} checked"
+            r["frames_drawing_a_surface"] = f"{surface} of {len(checked)} checked"
         out[name] = r
         s.close()
     del mesh
