@@ -66,6 +66,11 @@ private:
   ErrorMetric metric_;
   CameraFrame cam_;
   double ppu_ = 0.0;
+  // toWorld's first four columns' x, y, z, the eye and the view direction, as plain
+  // doubles for factor's corner loops.
+  double column_[4][3] = {};
+  double eye_[3] = {};
+  double forward_[3] = {};
 };
 
 // The largest stored-height error that projects within tau pixels at `factor`: tau /

@@ -10,6 +10,7 @@
 // determinant, which culled visible blocks and let the error reach several times tau.
 #include "CoreTestUtil.h"
 #include "Engine.h"
+#include "SelectLevels.h"
 
 #include <gtest/gtest.h>
 
@@ -132,6 +133,59 @@ TEST(ActorMatrix, HeightScaleScalesTheBound)
     measureTransform(glm::dmat4(1.0), 0.0, 4.0));
   EXPECT_LE(m.maxVertical, 20.0 * (1 + 1e-6));
   EXPECT_GT(m.maxVertical, 0.0);
+}
+
+// The projection factor of a box (SelectLevels.h, BoxProjector) against its definition,
+// written out plainly: the 8 corners through the full matrix (glm's matrix-vector product),
+// the largest eye distance and the smallest depth along the unit view direction, and the
+// pixels per unit at depth 1 from the field of view. Random affine models, datums, height
+// scales, boxes (flat ones included) and cameras; the engine computes the corners term by
+// term, so the two agree to rounding, not bit for bit.
+TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
+{
+  Rng rng(2718);
+  int compared = 0;
+  for (int trial = 0; trial < 400; ++trial)
+  {
+    const glm::dmat4 model = randomAffine(rng);
+    const double z0 = trial % 3 == 0 ? 6.4e6 : (trial % 3 == 1 ? 1000.0 : 0.0);
+    const double scale = randReal(rng, 0.5, 10.0);
+    gmm::View v;
+    v.model = model;
+    v.eye = glm::dvec3(randReal(rng, -2e4, 2e4), randReal(rng, -2e4, 2e4), z0 + randReal(rng, 100, 5e3));
+    v.forward = glm::dvec3(randReal(rng, -1, 1), randReal(rng, -1, 1), randReal(rng, -1, -0.05));
+    v.fovYDegrees = randReal(rng, 20, 80);
+    v.nearDistance = randReal(rng, 0.1, 50.0);
+    v.viewportHeight = 400 + trial;
+    const glm::dmat4 toWorld = gmm::heightfieldToWorld(v, z0, scale);
+    const gmm::BoxProjector projector(v, toWorld, gmm::ErrorMetric::Certified);
+    const glm::dvec3 fwd = glm::normalize(v.forward);
+    const double ppu = 0.5 * v.viewportHeight / std::tan(v.fovYDegrees * 3.14159265358979323846 / 360.0);
+    const double unitError = glm::length(glm::dvec3(toWorld * glm::dvec4(0, 0, 1, 0)));
+    for (int k = 0; k < 20; ++k)
+    {
+      gmm::Box box;
+      box.lo = glm::dvec3(randReal(rng, -3e4, 3e4), randReal(rng, -3e4, 3e4), randReal(rng, -500, 3000));
+      box.hi = box.lo + glm::dvec3(std::exp(randReal(rng, 0, 9)), std::exp(randReal(rng, 0, 9)),
+                          k % 4 == 0 ? 0.0 : std::exp(randReal(rng, -2, 7)));
+      double maxDist = 0.0, minDepth = INFINITY;
+      for (int c = 0; c < 8; ++c)
+      {
+        const glm::dvec3 p(toWorld * glm::dvec4(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
+                                       c & 4 ? box.hi.z : box.lo.z, 1.0));
+        maxDist = std::max(maxDist, glm::length(p - v.eye));
+        minDepth = std::min(minDepth, glm::dot(p - v.eye, fwd));
+      }
+      const double depth = std::max(minDepth, v.nearDistance);
+      const double expected = ppu * unitError * maxDist / (depth * depth);
+      // Relative to the terms' magnitude: a datum of 6.4e6 leaves ~1e-9 m of rounding in
+      // each corner, which a depth of a metre magnifies.
+      const double slack = 1e-9 * (1.0 + std::abs(z0) * scale / depth);
+      EXPECT_NEAR(projector.factor(box), expected, slack * expected) << "trial " << trial << " box " << k;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 8000);
 }
 
 TEST(ActorMatrix, RefusesBadInput)
