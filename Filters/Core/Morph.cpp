@@ -304,7 +304,8 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     if (key != cache.key[b])
     {
       const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
-      cache.errors[b] = morphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, cache.scratch);
+      updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, changedMorphParts(cache.key[b], key),
+        cache.errors[b], cache.scratch);
       cache.key[b] = key;
     }
     const PartErrors& pe = cache.errors[b];
@@ -417,6 +418,24 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
   }
 }
+
+unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<int8_t, 10>& now)
+{
+  if (was[0] != now[0] || was[5] != now[5])
+  {
+    return kAllMorphParts;
+  }
+  unsigned parts = 0;
+  for (int side = 0; side < 4; ++side)
+  {
+    if (was[1 + side] != now[1 + side] || was[6 + side] != now[6 + side])
+    {
+      parts |= 2u << side;
+    }
+  }
+  return parts;
+}
+
 
 double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
   const std::array<int, 4>& edgeTarget, int i, int j)

@@ -70,7 +70,9 @@ struct MorphFrame
 // computes them only for blocks whose configuration or targets changed. One per engine.
 struct MorphCache
 {
-  std::vector<std::array<int8_t, 10>> key; // level, 4 edge levels, target, 4 edge targets
+  // Per block: the key its part errors are of (level, 4 edge levels, target, 4 edge
+  // targets) and the errors; a changed key recomputes the parts changedMorphParts names.
+  std::vector<std::array<int8_t, 10>> key;
   std::vector<PartErrors> errors;
   const void* heights = nullptr; // the heights the errors are of (reset on change)
   EmitScratch scratch;
@@ -81,6 +83,11 @@ struct MorphCache
   std::vector<int> lastDrawn;                // the blocks lastLambda / lastFactor hold
   std::vector<const PartErrors*> parts;      // per drawn block of a frame (scratch)
 };
+
+// The parts (MorphBounds.h masks) whose errors a change of a block's key from `was` to `now`
+// invalidates: all of them when its level or target changed, else the strips whose edge
+// level or edge target did.
+unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<int8_t, 10>& now);
 
 // Morph factors for one frame. `levels` and `factor` (pixels per unit of stored height,
 // per block) are those of the frame (Engine::levels(), Engine::pixelFactors()); tau the

@@ -78,11 +78,23 @@ PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, EmitScratch& scratch)
 {
   PartErrors out;
+  updateMorphPartErrors(hf, qt, block, config, target, edgeTarget, kAllMorphParts, out, scratch);
+  return out;
+}
+
+void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts,
+  PartErrors& out, EmitScratch& scratch)
+{
   const int c = block % qt.blockCols, r = block / qt.blockCols;
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
   std::vector<GridTriangle> tris;
   for (int p = 0; p < 5; ++p)
   {
+    if (!(parts & (1u << p)))
+    {
+      continue;
+    }
     const BlockPart part = p == 0 ? BlockPart::Inner : static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + p - 1);
     tris.clear();
     emitBlockGrid(qt, block, config, part, tris, scratch);
@@ -117,7 +129,6 @@ PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       out.sideFrozen[p - 1] = !finite;
     }
   }
-  return out;
 }
 
 } // namespace gmm

@@ -44,4 +44,15 @@ double diagonalReach(const double e[4], double limit);
 PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, EmitScratch& scratch);
 
+// Parts as bits of a mask: bit 0 the inner grid, bit 1 + s side strip s.
+constexpr unsigned kAllMorphParts = 0x1f;
+
+// The parts of `errors` whose bits are set in `parts`, recomputed as morphPartErrors does;
+// the others are left as they are. The inner grid depends on config.level and `target`
+// alone, and side strip s on those and on config.edgeLevel[s] and edgeTarget[s] (block
+// corners never move), so a neighbour's change of level or target costs one strip.
+void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts,
+  PartErrors& errors, EmitScratch& scratch);
+
 } // namespace gmm

@@ -14,6 +14,7 @@
 #include "Engine.h"
 #include "Levels.h"
 #include "Morph.h"
+#include "MorphBounds.h"
 #include "MorphTestUtil.h"
 #include "SyntheticTerrain.h"
 #include "Tessellate.h"
@@ -21,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 
 using namespace gmmtest;
 
@@ -366,4 +368,87 @@ TEST(Morph, DiagonalReachIsTheFirstCrossing)
     partial += t > 0.0 && t < 1.0;
   }
   EXPECT_GT(partial, 5000);
+}
+
+TEST(Morph, PartErrorsRecomputedPartByPartEqualFreshOnes)
+{
+  // The morph cache recomputes only the parts a key change invalidates (changedMorphParts,
+  // updateMorphPartErrors). Over random blocks and random pairs of keys (level, edge levels,
+  // target, edge targets): the errors of the first key updated with that mask equal the
+  // second key's computed from scratch, every field exactly. This checks the dependency
+  // claim (a strip reads its own edge's level and target, not the other sides') as well as
+  // the mask.
+  Rng rng(77);
+  const gmm::Heightfield hf = roughTerrain(131, 101, rng, 20.0, 20.0, 400.0, 0.05);
+  const gmm::Quadtree qt = gmm::buildQuadtree(hf, 16);
+  gmm::EmitScratch scratch;
+  using Key = std::array<int8_t, 10>;
+  auto randomKey = [&](int b) {
+    const int w = qt.blockWidth(b), h = qt.blockHeight(b), top = gmm::topLevel(w, h);
+    std::vector<int> valid;
+    for (int m = 0; m <= top; ++m)
+      if (gmm::blockShape(w, h, m) != gmm::BlockShape::Invalid)
+        valid.push_back(m);
+    Key k;
+    k[0] = static_cast<int8_t>(valid[randInt(rng, 0, static_cast<int>(valid.size()) - 1)]);
+    const int next = gmm::nextValidLevel(w, h, k[0]);
+    k[5] = static_cast<int8_t>(next >= 0 && randInt(rng, 0, 3) > 0 ? next : -1);
+    for (int s = 0; s < 4; ++s)
+    {
+      k[1 + s] = static_cast<int8_t>(randInt(rng, k[0], top));
+      k[6 + s] = static_cast<int8_t>(k[1 + s] < top && randInt(rng, 0, 1) ? randInt(rng, k[1 + s] + 1, top) : -1);
+    }
+    return k;
+  };
+  auto errorsOf = [&](int b, const Key& k, unsigned parts, gmm::PartErrors& e) {
+    gmm::BlockConfig cfg;
+    cfg.level = k[0];
+    for (int s = 0; s < 4; ++s)
+      cfg.edgeLevel[s] = k[1 + s];
+    gmm::updateMorphPartErrors(hf, qt, b, cfg, k[5], { k[6], k[7], k[8], k[9] }, parts, e, scratch);
+  };
+  int partial = 0, strips = 0;
+  for (int trial = 0; trial < 3000; ++trial)
+  {
+    const int b = randInt(rng, 0, qt.blockCount() - 1);
+    const Key was = randomKey(b);
+    Key now = was;
+    const Key other = randomKey(b);
+    switch (randInt(rng, 0, 3))
+    {
+      case 0: // a neighbour changed one edge's level and/or target
+      {
+        const int s = randInt(rng, 0, 3);
+        now[1 + s] = std::max(other[1 + s], was[0]);
+        now[6 + s] = now[1 + s] < other[6 + s] ? other[6 + s] : -1;
+        break;
+      }
+      case 1: // one edge's target alone
+      {
+        const int s = randInt(rng, 0, 3);
+        now[6 + s] = now[1 + s] < other[6 + s] ? other[6 + s] : -1;
+        break;
+      }
+      case 2: // the block's own target
+        now[5] = now[5] >= 0 ? -1 : static_cast<int8_t>(gmm::nextValidLevel(qt.blockWidth(b), qt.blockHeight(b), now[0]));
+        break;
+      default: // anything
+        now = other;
+        break;
+    }
+    gmm::PartErrors updated;
+    errorsOf(b, was, gmm::kAllMorphParts, updated);
+    const unsigned parts = gmm::changedMorphParts(was, now);
+    errorsOf(b, now, parts, updated);
+    gmm::PartErrors fresh;
+    errorsOf(b, now, gmm::kAllMorphParts, fresh);
+    partial += parts != gmm::kAllMorphParts && parts != 0;
+    strips += parts != 0 && !(parts & 1u);
+    ASSERT_EQ(std::memcmp(updated.inner, fresh.inner, sizeof fresh.inner), 0) << "trial " << trial;
+    ASSERT_EQ(std::memcmp(updated.side, fresh.side, sizeof fresh.side), 0) << "trial " << trial << " parts " << parts;
+    ASSERT_EQ(updated.innerFrozen, fresh.innerFrozen) << "trial " << trial;
+    ASSERT_EQ(updated.sideFrozen, fresh.sideFrozen) << "trial " << trial;
+  }
+  std::printf("[ morph parts ] 3000 key changes, %d recomputed some strips only\n", strips);
+  EXPECT_GT(partial, 500);
 }
