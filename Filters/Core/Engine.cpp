@@ -332,8 +332,18 @@ const std::vector<uint32_t>& Engine::indices() const
 {
   if (!indicesCurrent_)
   {
+    // Block order, then the merged nodes in node order (slot order): only the drawn slots
+    // hold triangles, so only those are visited.
+    indexSlots_ = drawnList_;
+    std::sort(indexSlots_.begin(), indexSlots_.end());
+    std::vector<int> nodes = drawnMerged_;
+    std::sort(nodes.begin(), nodes.end());
+    for (int n : nodes)
+    {
+      indexSlots_.push_back(terrain_->qt.blockCount() + n);
+    }
     indices_.clear();
-    arena_.appendTriangles(indices_);
+    arena_.appendTriangles(indexSlots_, indices_);
     indicesCurrent_ = true;
   }
   return indices_;

@@ -190,6 +190,7 @@ private:
   std::vector<uint32_t> blockScratch_;
   EmitScratch emitScratch_; // emitBlock / emitMergedNode buffers, reused frame to frame
   mutable std::vector<uint32_t> indices_;
+  mutable std::vector<int> indexSlots_; // indices()' slots, in slot order
   mutable bool indicesCurrent_ = true;
   FrameStats stats_;
   std::string lastError_;

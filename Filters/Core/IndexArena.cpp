@@ -175,11 +175,12 @@ void IndexArena::endFrame()
   }
 }
 
-void IndexArena::appendTriangles(std::vector<uint32_t>& out) const
+void IndexArena::appendTriangles(const std::vector<int>& slots, std::vector<uint32_t>& out) const
 {
   out.reserve(out.size() + live_);
-  for (const Slot& s : slots_)
+  for (int k : slots)
   {
+    const Slot& s = slots_[static_cast<std::size_t>(k)];
     out.insert(out.end(), indices_.begin() + s.offset, indices_.begin() + s.offset + s.count);
   }
 }
