@@ -45,7 +45,8 @@ vtkCxxSetObjectMacro(vtkGeoMipMapFilter, ModelMatrix, vtkMatrix4x4);
 
 //------------------------------------------------------------------------------
 vtkGeoMipMapFilter::vtkGeoMipMapFilter()
-  : GeomorphRange(gmm::kDefaultMorphRange)
+  : BlockSize(gmm::kDefaultBlockQuads)
+  , GeomorphRange(gmm::kDefaultMorphRange)
   , Internal(new Internals)
 {
 }

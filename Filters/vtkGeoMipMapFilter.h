@@ -95,8 +95,8 @@ public:
 
   ///@{
   /**
-   * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default 64, as the
-   * mapper's. A smaller value is refused with an error and the previous one kept.
+   * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default
+   * gmm::kDefaultBlockQuads (32), as the mapper's. A smaller value is refused with an error and the previous one kept.
    */
   void SetBlockSize(int quads);
   vtkGetMacro(BlockSize, int);
@@ -190,7 +190,7 @@ protected:
   int ViewportSize[2] = { 1280, 720 };
   double PixelError = 1.0;
   vtkIdType TriangleBudget = 0;
-  int BlockSize = 64;
+  int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;
   double MaximumGeometricError = 0.0;

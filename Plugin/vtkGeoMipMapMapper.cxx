@@ -119,7 +119,8 @@ vtkStandardNewMacro(vtkGeoMipMapMapper);
 
 //------------------------------------------------------------------------------
 vtkGeoMipMapMapper::vtkGeoMipMapMapper()
-  : GeomorphRange(gmm::kDefaultMorphRange)
+  : BlockSize(gmm::kDefaultBlockQuads)
+  , GeomorphRange(gmm::kDefaultMorphRange)
   , Internal(new Internals)
 {
   vtkNew<vtkPoints> p;
@@ -270,6 +271,11 @@ void vtkGeoMipMapMapper::SetFreezeLevelOfDetail(bool freeze)
 int vtkGeoMipMapMapper::GetMinimumBlockSize()
 {
   return gmm::kMinBlockQuads;
+}
+
+int vtkGeoMipMapMapper::GetDefaultBlockSize()
+{
+  return gmm::kDefaultBlockQuads;
 }
 
 void vtkGeoMipMapMapper::SetBlockSize(int quads)

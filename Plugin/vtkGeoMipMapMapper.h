@@ -102,9 +102,10 @@ public:
 
   ///@{
   /**
-   * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default 64. A smaller
-   * value is refused with an error and the previous one kept. Changing it rebuilds the
-   * quadtree and error tables at the next render; the height texture is kept.
+   * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default
+   * GetDefaultBlockSize() (32). A smaller value is refused with an error and the previous one
+   * kept. Changing it rebuilds the quadtree and error tables at the next render; the height
+   * texture is kept.
    */
   void SetBlockSize(int quads);
   vtkGetMacro(BlockSize, int);
@@ -115,6 +116,12 @@ public:
    * filter and the command-line tools apply.
    */
   static int GetMinimumBlockSize();
+
+  /**
+   * The BlockSize of a new mapper or filter and the tools' default (gmm::kDefaultBlockQuads,
+   * 32; chosen by measurement, Documentation/benchmarks-core.md, "Leaf size").
+   */
+  static int GetDefaultBlockSize();
 
   ///@{
   /**
@@ -445,7 +452,7 @@ protected:
   void DrawTriangles(unsigned int mode, std::size_t indexCount);
 
   double PixelError = 1.0;
-  int BlockSize = 64;
+  int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;
   double HeightScale = 1.0;

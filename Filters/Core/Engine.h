@@ -51,7 +51,7 @@ class Engine
 public:
   // Builds a terrain for `hf` (buildTerrain) and uses it; "" on success, else the reason
   // (the engine is then empty).
-  std::string setHeightfield(Heightfield hf, int maxBlockQuads = 64, int threads = 0);
+  std::string setHeightfield(Heightfield hf, int maxBlockQuads = kDefaultBlockQuads, int threads = 0);
 
   // Uses a terrain built elsewhere (shared with other engines; never modified). nullptr
   // empties the engine. Per-frame state starts afresh.

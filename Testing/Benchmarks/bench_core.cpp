@@ -6,13 +6,17 @@
 //   GEOMIPMAP_BENCH_THREADS=1 ...                                  # table build threads (0 = all)
 //
 // BM_LodFlightFar20km: the same flight with the far plane at 20 km.
+// BM_BlockSizeSweep4097 / BM_BlockSizeSweepMapperDefault4097: the whole-DEM flight at 4097^2
+// for leaf sizes 16 .. 256, engine default and mapper default.
 // BM_LodFlightMapperDefault: the whole-DEM flight with the CPU work the mapper does per frame
 // by default: Engine::update on geomorphing's level path (kDefaultMorphRange) and
 // computeMorph over the drawn blocks (the mapper draws the index arena: no concatenation).
 // Scene: synthetic terrain (gmm::makeSyntheticTerrain, 30 m spacing, seed 42), camera flying
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
-// tau = 1 px. Each benchmark iteration is one frame (Engine::update: cull + select +
+// tau = 1 px, the default block size (gmm::kDefaultBlockQuads; GEOMIPMAP_BENCH_BLOCK=N for
+// another) unless swept. Each benchmark
+// iteration is one frame (Engine::update: cull + select +
 // tessellate, single thread); the flight loops after kFlightFrames frames.
 #include "Engine.h"
 #include "Morph.h"
@@ -214,7 +218,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
 void BM_FullResolutionIndices(benchmark::State& state)
 {
   const int size = static_cast<int>(state.range(0));
-  Scene& s = scene(size, 64);
+  Scene& s = scene(size, envInt("GEOMIPMAP_BENCH_BLOCK", gmm::kDefaultBlockQuads));
   std::vector<uint32_t> out;
   std::size_t tris = 0;
   for (auto _ : state)
@@ -233,6 +237,7 @@ int main(int argc, char** argv)
 {
   benchmark::Initialize(&argc, argv);
   const int maxSize = envInt("GEOMIPMAP_BENCH_MAX", 4097);
+  const int block = envInt("GEOMIPMAP_BENCH_BLOCK", gmm::kDefaultBlockQuads);
   std::vector<int> sizes;
   for (int s : { 1025, 4097, 16385 })
     if (s <= maxSize)
@@ -242,17 +247,17 @@ int main(int argc, char** argv)
   for (int s : sizes)
   {
     benchmark::RegisterBenchmark(("BM_LodFlight/" + std::to_string(s)).c_str(),
-      [s](benchmark::State& st) { runFlight(st, s, 64); })
+      [s, block](benchmark::State& st) { runFlight(st, s, block); })
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
     benchmark::RegisterBenchmark(("BM_LodFlightFar20km/" + std::to_string(s)).c_str(),
-      [s](benchmark::State& st) { runFlight(st, s, 64, 20000.0); })
+      [s, block](benchmark::State& st) { runFlight(st, s, block, 20000.0); })
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
     benchmark::RegisterBenchmark(("BM_LodFlightMapperDefault/" + std::to_string(s)).c_str(),
-      [s](benchmark::State& st) { runFlight(st, s, 64, 0.0, true); })
+      [s, block](benchmark::State& st) { runFlight(st, s, block, 0.0, true); })
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
@@ -264,11 +269,18 @@ int main(int argc, char** argv)
   }
   if (envInt("GEOMIPMAP_BENCH_SWEEP", 1))
     for (int bq : { 16, 32, 64, 128, 256 })
+    {
       benchmark::RegisterBenchmark(("BM_BlockSizeSweep4097/" + std::to_string(bq)).c_str(),
         [bq](benchmark::State& st) { runFlight(st, 4097, bq); })
         ->Unit(benchmark::kMicrosecond)
         ->UseRealTime()
         ->MinTime(2.0);
+      benchmark::RegisterBenchmark(("BM_BlockSizeSweepMapperDefault4097/" + std::to_string(bq)).c_str(),
+        [bq](benchmark::State& st) { runFlight(st, 4097, bq, 0.0, true); })
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime()
+        ->MinTime(2.0);
+    }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -5,7 +5,8 @@
 //   GEOMIPMAP_BENCH_MAX=16385 build/Testing/Benchmarks/bench_tables # adds 8193^2, 16385^2 (~3 GB)
 //   GEOMIPMAP_BENCH_SINGLE=0 ...                                    # skip the one-thread builds
 //
-// DEM: synthetic terrain (gmm::makeSyntheticTerrain, 30 m, seed 42), block size 64. Each
+// DEM: synthetic terrain (gmm::makeSyntheticTerrain, 30 m, seed 42), the default block size
+// (gmm::kDefaultBlockQuads; GEOMIPMAP_BENCH_BLOCK=N for another). Each
 // figure is one run (seconds, wall clock) and the ratios are taken within the run, so the
 // machine's load at that moment affects both sides alike. An open is buildTerrain over
 // heights held elsewhere (as the VTK classes pass the image's array) with the table cache
@@ -52,8 +53,10 @@ int main()
 {
   const int maxSize = envInt("GEOMIPMAP_BENCH_MAX", 4097);
   const bool single = envInt("GEOMIPMAP_BENCH_SINGLE", 1) != 0;
+  const int block = envInt("GEOMIPMAP_BENCH_BLOCK", gmm::kDefaultBlockQuads);
   const unsigned cores = std::thread::hardware_concurrency();
   const std::filesystem::path dir = std::filesystem::current_path() / "bench_tables_cache";
+  std::printf("Block size %d quads.\n\n", block);
   std::printf("| DEM | table, 1 thread | table, %u threads | speed-up | first open (tables built "
               "and saved) | second open (of which hash) | first / second |\n"
               "|---|---|---|---|---|---|---|\n",
@@ -66,7 +69,7 @@ int main()
     }
     std::filesystem::remove_all(dir);
     const gmm::Heightfield hf = gmm::makeSyntheticTerrain(n, n, 30.0, 42);
-    const gmm::Quadtree qt = gmm::buildQuadtree(hf, 64);
+    const gmm::Quadtree qt = gmm::buildQuadtree(hf, block);
     double one = 0.0;
     if (single)
     {
@@ -83,10 +86,10 @@ int main()
     const gmm::ErrorTable all = gmm::buildErrorTable(hf, qt, 0);
     const double allSeconds = seconds(t0);
     t0 = std::chrono::steady_clock::now();
-    gmm::buildTerrain(sharedView(hf), 64, 0, built, nullptr, cache, &first);
+    gmm::buildTerrain(sharedView(hf), block, 0, built, nullptr, cache, &first);
     const double firstOpen = seconds(t0);
     t0 = std::chrono::steady_clock::now();
-    const std::string err = gmm::buildTerrain(sharedView(hf), 64, 0, read, nullptr, cache, &second);
+    const std::string err = gmm::buildTerrain(sharedView(hf), block, 0, read, nullptr, cache, &second);
     const double cachedOpen = seconds(t0);
     if (!err.empty() || !first.written || !second.hit || read->table.ownError != all.ownError)
     {

@@ -6,6 +6,9 @@ render logged "below the minimum of 4 quads" and drew nothing. The rule now live
 place (gmm::kMinBlockQuads, 4): the setters refuse smaller values with an error and keep
 the previous value, geomipmap-fly refuses them with its one-line error and exit 2, and
 the help texts say 4.
+The default block size is one value too (gmm::kDefaultBlockQuads, 32, chosen by
+measurement): a new mapper and filter start with it and the tools' --block-size defaults
+to it (the help says so).
 Usage: TestBlockSizeRule.py [geomipmap-fly]
 """
 import subprocess
@@ -37,6 +40,11 @@ mapper = geomipmap.vtkGeoMipMapMapper()
 mapper.SetInputConnection(src.GetOutputPort())
 filt = geomipmap.vtkGeoMipMapFilter()
 filt.SetInputConnection(src.GetOutputPort())
+default = geomipmap.vtkGeoMipMapMapper.GetDefaultBlockSize()
+check(default == 32, f"the default block size is 32 (got {default})")
+check(mapper.GetBlockSize() == default and filt.GetBlockSize() == default,
+      f"a new mapper and filter start at the default (mapper {mapper.GetBlockSize()}, "
+      f"filter {filt.GetBlockSize()})")
 for obj, name in ((mapper, "mapper"), (filt, "filter")):
     errors = Errors(obj)
     obj.SetBlockSize(32)
@@ -81,5 +89,6 @@ if len(sys.argv) > 1:
     text = " ".join(p.stdout.split())
     check("4..1024" in text and "2..1024" not in text,
           "geomipmap-fly --help states the block size range 4..1024")
+    check("(default 32)" in text, "geomipmap-fly --help states the default block size 32")
 
 check.exit()

@@ -55,6 +55,27 @@ def min_block_size():
     return vtkGeoMipMapMapper.GetMinimumBlockSize()
 
 
+def default_block_size():
+    """The engine's one default block size (gmm::kDefaultBlockQuads), as the mapper states it."""
+    from geomipmap import vtkGeoMipMapMapper
+
+    return vtkGeoMipMapMapper.GetDefaultBlockSize()
+
+
+def add_block_size_option(group):
+    """--block-size, with the mapper's default; check_block_size validates it."""
+    group.add_argument("--block-size", type=int, default=default_block_size(),
+                       help=f"block size in quads, a power of two {min_block_size()}..1024 "
+                       f"(default {default_block_size()})")
+
+
+def check_block_size(b):
+    """The tools' rule for --block-size: a power of two from the engine's minimum to 1024."""
+    least = min_block_size()
+    if b < least or b > 1024 or b & (b - 1):
+        raise AppError(f"--block-size must be a power of two in {least}..1024, got {b}")
+
+
 def colour(text):
     """Argument type: 'elevation' or 'texture:FILE.png'."""
     if text == "elevation" or (text.startswith("texture:") and len(text) > 8):
@@ -96,9 +117,7 @@ def add_rendering_options(parser, size=(1280, 720)):
     g = parser.add_argument_group("rendering")
     g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
                    help="pixel error bound (default 1)")
-    g.add_argument("--block-size", type=int, default=64,
-                   help=f"block size in quads, a power of two {min_block_size()}..1024 "
-                   "(default 64)")
+    add_block_size_option(g)
     g.add_argument("--size", type=window_size, default=size,
                    help=f"window WxH (default {size[0]}x{size[1]})")
     g.add_argument("--color", type=colour, default="elevation",
@@ -116,9 +135,7 @@ def add_rendering_options(parser, size=(1280, 720)):
 
 def check_common(args):
     """Checks of the shared options argparse cannot express, and the X display VTK needs."""
-    b, least = args.block_size, min_block_size()
-    if b < least or b > 1024 or b & (b - 1):
-        raise AppError(f"--block-size must be a power of two in {least}..1024, got {b}")
+    check_block_size(args.block_size)
     if args.dem and not os.path.isfile(args.dem):
         raise AppError(f"DEM file not found: {args.dem}")
     texture = args.color.split(":", 1)[1] if args.color.startswith("texture:") else None

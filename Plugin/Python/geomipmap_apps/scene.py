@@ -50,7 +50,7 @@ class Scene:
     (apply(renderer, frame)).
     """
 
-    def __init__(self, image, heights, block_size=64, tau=1.0, color="elevation",
+    def __init__(self, image, heights, block_size=None, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
                  messages=None, window=None, drape=None, drape_size=8192):
         import geomipmap
@@ -58,7 +58,8 @@ class Scene:
         self.messages = messages or VTKMessages()
         self.mapper = geomipmap.vtkGeoMipMapMapper()
         self.mapper.SetInputData(image)
-        self.mapper.SetBlockSize(block_size)
+        if block_size is not None:  # None: the mapper's default (GetDefaultBlockSize)
+            self.mapper.SetBlockSize(block_size)
         self.mapper.SetPixelError(tau)
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)

@@ -54,6 +54,7 @@ def build_parser():
                    help="pixel error bounds for ours (default 0.5,1,2,4,8)")
     p.add_argument("--methods", default=",".join(METHODS), help="subset of " + ",".join(METHODS))
     p.add_argument("--frames", type=int, default=12, help="frames per method (default 12)")
+    command.add_block_size_option(p)
     p.add_argument("--path", choices=("orbit", "line"), default="orbit")
     p.add_argument("--size", type=command.window_size, default=(1280, 720),
                    help="window WxH (default 1280x720)")
@@ -108,6 +109,7 @@ def main(argv=None):
         args.fill = terrain.fill_options(args)
         if args.frames < 1:
             raise AppError(f"--frames must be >= 1, got {args.frames}")
+        command.check_block_size(args.block_size)
         if args.replot:
             for d in args.replot:
                 if not os.path.isfile(os.path.join(d, "notes.json")):

@@ -70,14 +70,14 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
         skip("all", f"cannot load: {e}")
         return
     samples = heights.nx * heights.ny
-    out.note(label, f"{heights.nx} x {heights.ny} samples, loaded in "
+    out.note(label, f"{heights.nx} x {heights.ny} samples, block size {args.block_size}, loaded in "
              f"{time.perf_counter() - t0:.1f} s")
     over = {m: _gb(m, samples) > budget_gb for m in methods}
     if "ours" not in methods or over["ours"]:
         for m in methods:
             skip(m, "ours does not run (memory budget or --methods): no triangle counts")
         return
-    scene = Scene(image, heights, block_size=64, tau=args.tau[0], size=args.size,
+    scene = Scene(image, heights, block_size=args.block_size, tau=args.tau[0], size=args.size,
                   title="geomipmap-bench", messages=messages)
     route = (flight.Line if args.path == "line" else flight.Orbit)(
         heights, frames=args.frames, pitch=15.0, view_angle=50.0)
