@@ -96,7 +96,8 @@ public:
   ///@{
   /**
    * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default
-   * gmm::kDefaultBlockQuads (32), as the mapper's. A smaller value is refused with an error and the previous one kept.
+   * gmm::kDefaultBlockQuads (32), as the mapper's. A smaller value is refused with an error
+   * and the previous one kept.
    */
   void SetBlockSize(int quads);
   vtkGetMacro(BlockSize, int);

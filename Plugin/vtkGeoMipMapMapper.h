@@ -119,7 +119,8 @@ public:
 
   /**
    * The BlockSize of a new mapper or filter and the tools' default (gmm::kDefaultBlockQuads,
-   * 32; chosen by measurement, Documentation/benchmarks-core.md, "Leaf size").
+   * 32; chosen by measurement: Documentation/benchmarks-core.md, "The default block size is
+   * now 32").
    */
   static int GetDefaultBlockSize();
 

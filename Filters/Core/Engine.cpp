@@ -335,13 +335,12 @@ const std::vector<uint32_t>& Engine::indices() const
     // Block order, then the merged nodes in node order (slot order): only the drawn slots
     // hold triangles, so only those are visited.
     indexSlots_ = drawnList_;
-    std::sort(indexSlots_.begin(), indexSlots_.end());
-    std::vector<int> nodes = drawnMerged_;
-    std::sort(nodes.begin(), nodes.end());
-    for (int n : nodes)
+    for (int n : drawnMerged_)
     {
       indexSlots_.push_back(terrain_->qt.blockCount() + n);
     }
+    // Node slots all come after block slots, so one sort gives both orders.
+    std::sort(indexSlots_.begin(), indexSlots_.end());
     indices_.clear();
     arena_.appendTriangles(indexSlots_, indices_);
     indicesCurrent_ = true;

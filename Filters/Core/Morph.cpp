@@ -436,7 +436,6 @@ unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<i
   return parts;
 }
 
-
 double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
   const std::array<int, 4>& edgeTarget, int i, int j)
 {

@@ -15,9 +15,8 @@
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
 // tau = 1 px, the default block size (gmm::kDefaultBlockQuads; GEOMIPMAP_BENCH_BLOCK=N for
-// another) unless swept. Each benchmark
-// iteration is one frame (Engine::update: cull + select +
-// tessellate, single thread); the flight loops after kFlightFrames frames.
+// another) unless swept. Each benchmark iteration is one frame (Engine::update: cull +
+// select + tessellate, single thread); the flight loops after kFlightFrames frames.
 #include "Engine.h"
 #include "Morph.h"
 #include "SyntheticTerrain.h"
@@ -215,10 +214,10 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   e.setMorphRange(0.0); // the scene's engine is shared by the other registrations
 }
 
-void BM_FullResolutionIndices(benchmark::State& state)
+void BM_FullResolutionIndices(benchmark::State& state, int blockQuads)
 {
   const int size = static_cast<int>(state.range(0));
-  Scene& s = scene(size, envInt("GEOMIPMAP_BENCH_BLOCK", gmm::kDefaultBlockQuads));
+  Scene& s = scene(size, blockQuads); // the flights' scene: the same DEM, not built again
   std::vector<uint32_t> out;
   std::size_t tris = 0;
   for (auto _ : state)
@@ -261,7 +260,8 @@ int main(int argc, char** argv)
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
-    benchmark::RegisterBenchmark(("BM_FullResolutionIndices/" + std::to_string(s)).c_str(), BM_FullResolutionIndices)
+    benchmark::RegisterBenchmark(("BM_FullResolutionIndices/" + std::to_string(s)).c_str(),
+      [block](benchmark::State& st) { BM_FullResolutionIndices(st, block); })
       ->Arg(s)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()

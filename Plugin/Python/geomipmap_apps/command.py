@@ -64,9 +64,10 @@ def default_block_size():
 
 def add_block_size_option(group):
     """--block-size, with the mapper's default; check_block_size validates it."""
-    group.add_argument("--block-size", type=int, default=default_block_size(),
+    default = default_block_size()
+    group.add_argument("--block-size", type=int, default=default,
                        help=f"block size in quads, a power of two {min_block_size()}..1024 "
-                       f"(default {default_block_size()})")
+                       f"(default {default})")
 
 
 def check_block_size(b):
