@@ -1,7 +1,8 @@
 // Exact geometric error of every block at every level, and of every side strip for every
-// coarser edge level. Computed by rasterising the very triangles Tessellate emits over the
-// full-resolution samples: the error of a sample is its vertical distance to the drawn
-// triangle above/below it, and a table entry is the maximum over the samples it covers.
+// coarser edge level. Computed from the very triangles Tessellate emits over the
+// full-resolution samples (RasterError.h): the error of a sample is its vertical distance
+// to the drawn triangle above/below it, and a table entry is the maximum over the samples
+// it covers.
 // A triangle that would cover or touch nodata at anything but full resolution has infinite
 // error, so blocks with holes stay at level 0 around them. Errors are computed in double
 // from height differences (a constant height offset, e.g. ECEF-like 6.4e6 m, gives the very
@@ -57,16 +58,5 @@ struct ErrorTable
 // thread only (the workers count, the caller reports).
 ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads = 0,
   const std::function<void(double)>& progress = nullptr);
-
-// Error of the inner grid of a ring block at a level > 0 (what Tessellate's drawArea
-// emits over inner columns C[1..k-1] and rows R[1..L-1], C and R from edgeSamples), with
-// every sample evaluated once in a direct walk over the cells: the same value as
-// rasterising those triangles (up to the rounding of a sample on a cell border, which both
-// cells interpolate alike), at a fraction of the cost. Nodata anywhere gives +inf.
-float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std::vector<int>& R);
-
-// Maximum vertical error of the samples covered by a list of triangles (grid points), the
-// building block of the table; exposed for tests.
-float trianglesError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool strictNodata);
 
 } // namespace gmm

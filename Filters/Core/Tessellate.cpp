@@ -170,9 +170,11 @@ void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
   }
 }
 
-template <typename Sink>
-void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
-  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch)
+// The two polylines of one side strip (Tessellate.h, sidePolylines), in the block's
+// counter-clockwise direction: the edge samples at the edge level (outer) and the inner
+// ring's samples along that side (inner).
+void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<int>& R, int side,
+  int edgeLevel, EmitScratch& scratch)
 {
   std::vector<int>& edge = scratch.edge;
   std::vector<GridPoint>& outer = scratch.outer;
@@ -188,7 +190,6 @@ void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ x, r.j0 });
       for (std::size_t u = 1; u < k; ++u)
         inner.push_back({ C[u], R[1] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.i; }, true);
       break;
     case East:
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
@@ -196,7 +197,6 @@ void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ r.i1, y });
       for (std::size_t t = 1; t < L; ++t)
         inner.push_back({ C[k - 1], R[t] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.j; }, false);
       break;
     case North:
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
@@ -204,7 +204,6 @@ void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ *it, r.j1 });
       for (std::size_t u = k - 1; u >= 1; --u)
         inner.push_back({ C[u], R[L - 1] });
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.i; }, true);
       break;
     default: // West
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
@@ -212,6 +211,29 @@ void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
         outer.push_back({ r.i0, *it });
       for (std::size_t t = L - 1; t >= 1; --t)
         inner.push_back({ C[1], R[t] });
+      break;
+  }
+}
+
+template <typename Sink>
+void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
+  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch)
+{
+  sideLines(r, C, R, side, edgeLevel, scratch);
+  const std::vector<GridPoint>& outer = scratch.outer;
+  const std::vector<GridPoint>& inner = scratch.inner;
+  switch (side)
+  {
+    case South:
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.i; }, true);
+      break;
+    case East:
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.j; }, false);
+      break;
+    case North:
+      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.i; }, true);
+      break;
+    default: // West
       drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.j; }, false);
       break;
   }
@@ -287,6 +309,15 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
 {
   GridSink sink(out);
   emitBlockTo(sink, qt, block, config, part, scratch);
+}
+
+void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int side,
+  EmitScratch& scratch)
+{
+  const BlockRect r = blockRect(qt, block);
+  edgeSamples(r.i0, r.i1, config.level, scratch.cols);
+  edgeSamples(r.j0, r.j1, config.level, scratch.rows);
+  sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch);
 }
 
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block)

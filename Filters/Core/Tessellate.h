@@ -81,6 +81,15 @@ void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const Block
 void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, BlockPart part,
   std::vector<GridTriangle>& out, EmitScratch& scratch);
 
+// The two polylines a ring block's side strip joins (valid for BlockShape::Ring only):
+// scratch.outer gets the edge samples at config.edgeLevel[side] along the block's border,
+// scratch.inner the inner ring's samples along that side (the block's own level, one step
+// in from the border), both in the block's counter-clockwise direction. Every strip
+// triangle has its vertices on these two lines, which are one row (South, North) or
+// column (East, West) each. scratch.cols and rows get the block's samples at its level.
+void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int side,
+  EmitScratch& scratch);
+
 // Merged nodes (hierarchical selection): a quadtree node drawn whole, far from the eye,
 // instead of one coarsest block per leaf. It is drawn as a fan from the sample nearest its
 // centre to its perimeter, and the perimeter passes through every block corner on the

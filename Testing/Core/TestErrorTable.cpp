@@ -3,6 +3,7 @@
 // an independent measure in TestErrorCertification, TestViewIndependent and TestHandChecked.)
 #include "CoreTestUtil.h"
 #include "ErrorTable.h"
+#include "RasterError.h"
 #include "Levels.h"
 #include "Tessellate.h"
 
@@ -107,7 +108,8 @@ namespace
 {
 // Independent of the engine's rasteriser: every sample of the triangle's box tested with
 // cross products, the surface from the plane through the three vertices, in long double.
-double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t)
+// sawNodata, when given, is set when a covered sample is nodata.
+double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t, bool* sawNodata = nullptr)
 {
   const auto& a = t.v[0];
   const auto& b = t.v[1];
@@ -125,6 +127,8 @@ double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t
       const bool inside = area > 0 ? (e0 >= 0 && e1 >= 0 && e2 >= 0) : (e0 <= 0 && e1 <= 0 && e2 <= 0);
       if (!inside)
         continue;
+      if (sawNodata && std::isnan(hf.height(i, j)))
+        *sawNodata = true;
       // Barycentric weights of b and c: e2 / area and e0 / area.
       const long double surface = za + (zb - za) * e2 / area + (zc - za) * e0 / area;
       worst = std::max(worst, static_cast<double>(std::fabs(hf.height(i, j) - surface)));
@@ -177,6 +181,102 @@ TEST(ErrorTable, StripAndFanErrorsEqualBruteForce)
     }
   }
   EXPECT_GT(compared, 1000);
+}
+
+// The table's strip and own entries against the brute force over the very triangles
+// Tessellate emits: every side strip of every ring level towards every coarser edge level
+// (made monotone in the edge level, as the table documents) and every block's error with
+// its own edges, with nodata (strict: +inf). The table measures a strip's samples on its
+// two lines as polylines and rasterises only the rows between them; this checks that
+// nothing is lost by it, on blocks whose sides the steps divide and do not.
+TEST(ErrorTable, StripAndOwnEntriesEqualBruteForceOverTheirTriangles)
+{
+  Rng rng(4242);
+  int compared = 0, infinite = 0;
+  // Brute force with nodata: +inf when a covered sample (vertices included) is nodata.
+  auto bruteStrict = [](const gmm::Heightfield& hf, const std::vector<gmm::GridTriangle>& tris) {
+    double worst = 0.0;
+    for (const gmm::GridTriangle& t : tris)
+    {
+      bool nodata = false;
+      const double e = bruteTriangleError(hf, t, &nodata);
+      if (nodata)
+        return static_cast<double>(INFINITY);
+      worst = std::max(worst, e);
+    }
+    return worst;
+  };
+  for (int k = 0; k < 14; ++k)
+  {
+    const int nx = randInt(rng, 12, 110), ny = randInt(rng, 12, 110);
+    gmm::Heightfield hf = roughTerrain(nx, ny, rng);
+    if (k % 3 == 1)
+      for (int h = 0; h < 3; ++h)
+        hf.z[hf.index(randInt(rng, 0, nx - 1), randInt(rng, 0, ny - 1))] = NAN;
+    const gmm::Quadtree qt = gmm::buildQuadtree(hf, 4 << randInt(rng, 0, 3));
+    const gmm::ErrorTable table = gmm::buildErrorTable(hf, qt, 1);
+    gmm::EmitScratch scratch;
+    std::vector<gmm::GridTriangle> tris;
+    auto expectNear = [&](float got, double want, const char* what, int b, int m, int n, int side) {
+      if (want == INFINITY)
+      {
+        ASSERT_EQ(got, INFINITY) << what << " block " << b << " m " << m << " n " << n << " side " << side;
+        ++infinite;
+        return;
+      }
+      ASSERT_GE(got, want * (1 - 1e-12)) << what << " block " << b << " m " << m << " n " << n << " side " << side;
+      ASSERT_LE(got, want * (1 + 1e-6) + 1e-9) << what << " block " << b << " m " << m << " n " << n << " side " << side;
+      ++compared;
+    };
+    for (int b = 0; b < qt.blockCount(); ++b)
+    {
+      const int w = qt.blockWidth(b), h = qt.blockHeight(b), top = gmm::topLevel(w, h);
+      for (int m = 0; m <= top; ++m)
+      {
+        if (gmm::blockShape(w, h, m) != gmm::BlockShape::Ring || (qt.blockHasNodata[b] && m > 0))
+          continue;
+        double own = 0.0; // level 0 with its own edges: every sample a vertex
+        if (m > 0)
+        {
+          gmm::BlockConfig cfg;
+          cfg.level = m;
+          cfg.edgeLevel = { m, m, m, m };
+          tris.clear();
+          gmm::emitBlockGrid(qt, b, cfg, gmm::BlockPart::Whole, tris, scratch);
+          own = bruteStrict(hf, tris);
+          expectNear(table.ownExact(b, m), own, "own", b, m, m, -1);
+        }
+        for (int side = 0; side < 4; ++side)
+        {
+          double running = 0.0;
+          if (m > 0)
+          {
+            gmm::BlockConfig cfg;
+            cfg.level = m;
+            cfg.edgeLevel = { m, m, m, m };
+            tris.clear();
+            gmm::emitBlockGrid(qt, b, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
+              tris, scratch);
+            running = bruteStrict(hf, tris);
+          }
+          for (int n = m + 1; n < table.levels; ++n)
+          {
+            gmm::BlockConfig cfg;
+            cfg.level = m;
+            cfg.edgeLevel = { m, m, m, m };
+            cfg.edgeLevel[side] = n;
+            tris.clear();
+            gmm::emitBlockGrid(qt, b, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
+              tris, scratch);
+            running = std::max(running, bruteStrict(hf, tris));
+            expectNear(table.strip(b, side, m, n), running, "strip", b, m, n, side);
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(infinite, 20);
 }
 
 // A merged node's error, from the design alone: the fan from the sample at the node's
