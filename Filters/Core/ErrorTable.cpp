@@ -201,24 +201,34 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
 
   unsigned workers = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
   workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(items)));
-  // Items are independent: interleave them over the workers so that expensive regions of
-  // the DEM spread evenly.
-  std::atomic<std::size_t> done{ 0 };
-  auto work = [&](unsigned first) {
+  // Items are independent. Workers take the next ones from a shared counter rather than a
+  // fixed share, so that a worker on a slower or busier core does fewer: with a fixed
+  // interleaving the build took as long as its slowest half, and on this project's 2-core
+  // VM one core builds the table 1.65x slower than the other (16385^2: 10.7 s with two
+  // threads against 11.7 s with one). Blocks go in runs of kBlockRun (neighbours share
+  // cache lines of heights and table); merged nodes one at a time, as one near the top
+  // covers up to 16 x 16 blocks.
+  constexpr std::size_t kBlockRun = 16;
+  std::atomic<std::size_t> nextBlock{ 0 }, nextNode{ 0 }, done{ 0 };
+  auto work = [&]() {
     Scratch scratch;
-    for (std::size_t k = first; k < items; k += workers)
+    for (std::size_t first; (first = nextBlock.fetch_add(kBlockRun)) < blocks;)
     {
-      if (k < blocks)
-        fillBlock(hf, qt, static_cast<int>(k), t, scratch);
-      else
-        t.mergedError[k - blocks] = mergedNodeError(hf, qt, static_cast<int>(k - blocks), scratch);
+      const std::size_t last = std::min(blocks, first + kBlockRun);
+      for (std::size_t b = first; b < last; ++b)
+        fillBlock(hf, qt, static_cast<int>(b), t, scratch);
+      done.fetch_add(last - first, std::memory_order_relaxed);
+    }
+    for (std::size_t n; (n = nextNode.fetch_add(1)) < nodes;)
+    {
+      t.mergedError[n] = mergedNodeError(hf, qt, static_cast<int>(n), scratch);
       done.fetch_add(1, std::memory_order_relaxed);
     }
   };
   std::vector<std::thread> pool;
   for (unsigned w = 0; w < workers; ++w)
   {
-    pool.emplace_back(work, w);
+    pool.emplace_back(work);
   }
   if (progress)
   {
