@@ -71,6 +71,10 @@ private:
   double column_[4][3] = {};
   double eye_[3] = {};
   double forward_[3] = {};
+  // toWorld's linear part is diagonal (a DEM's usual frame: spacing, height scale and an
+  // offset): each corner term then depends on one box coordinate, and factor takes the
+  // extremes axis by axis.
+  bool diagonal_ = false;
 };
 
 // The largest stored-height error that projects within tau pixels at `factor`: tau /

@@ -147,7 +147,15 @@ TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
   int compared = 0;
   for (int trial = 0; trial < 400; ++trial)
   {
-    const glm::dmat4 model = randomAffine(rng);
+    // Every other trial a diagonal frame (translation and per-axis scale, mirrored on some
+    // axes), as a DEM's own frame usually is: BoxProjector takes its extremes axis by axis.
+    glm::dmat4 model = randomAffine(rng);
+    if (trial % 2 == 0)
+    {
+      model = glm::translate(glm::dmat4(1.0), glm::dvec3(randReal(rng, -5e3, 5e3), randReal(rng, -5e3, 5e3), randReal(rng, -500, 500)));
+      model = glm::scale(model, glm::dvec3(randReal(rng, 0.3, 5.0) * (trial % 8 == 0 ? -1 : 1),
+                                  randReal(rng, 0.3, 5.0) * (trial % 12 == 2 ? -1 : 1), randReal(rng, 0.3, 5.0)));
+    }
     const double z0 = trial % 3 == 0 ? 6.4e6 : (trial % 3 == 1 ? 1000.0 : 0.0);
     const double scale = randReal(rng, 0.5, 10.0);
     gmm::View v;
