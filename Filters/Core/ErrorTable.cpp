@@ -172,11 +172,6 @@ float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scrat
 
 } // namespace
 
-float ErrorTable::strip(int block, int side, int m, int n) const
-{
-  return stripError[(static_cast<std::size_t>(block) * 4 + side) * pairs + pairIndex(m, n)];
-}
-
 
 ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads,
   const std::function<void(double)>& progress)

@@ -50,7 +50,11 @@ struct ErrorTable
   {
     return ownErrorExact[static_cast<std::size_t>(block) * levels + m];
   }
-  float strip(int block, int side, int m, int n) const;
+  // Inline: the selection reads it for every strip of every drawn block, every frame.
+  float strip(int block, int side, int m, int n) const
+  {
+    return stripError[(static_cast<std::size_t>(block) * 4 + side) * pairs + pairIndex(m, n)];
+  }
 };
 
 // Builds the table with up to `threads` worker threads (0 = hardware concurrency).
