@@ -137,6 +137,23 @@ double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t
 }
 } // namespace
 
+namespace
+{
+// The triangles of one side strip of block b at level m whose edge is sampled at level n
+// (the other edges at m), replacing `tris`.
+void emitStrip(const gmm::Quadtree& qt, int b, int m, int side, int n,
+  std::vector<gmm::GridTriangle>& tris, gmm::EmitScratch& scratch)
+{
+  gmm::BlockConfig cfg;
+  cfg.level = m;
+  cfg.edgeLevel = { m, m, m, m };
+  cfg.edgeLevel[side] = n;
+  tris.clear();
+  gmm::emitBlockGrid(qt, b, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
+    tris, scratch);
+}
+} // namespace
+
 TEST(ErrorTable, StripAndFanErrorsEqualBruteForce)
 {
   // Every side strip at every level towards every coarser edge level, on blocks whose
@@ -160,13 +177,7 @@ TEST(ErrorTable, StripAndFanErrorsEqualBruteForce)
         for (int side = 0; side < 4; ++side)
           for (int n = m; n <= top; ++n)
           {
-            gmm::BlockConfig cfg;
-            cfg.level = m;
-            cfg.edgeLevel = { m, m, m, m };
-            cfg.edgeLevel[side] = n;
-            tris.clear();
-            gmm::emitBlockGrid(qt, bIndex, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
-              tris, scratch);
+            emitStrip(qt, bIndex, m, side, n, tris, scratch);
             for (const gmm::GridTriangle& t : tris)
             {
               const double brute = bruteTriangleError(hf, t);
@@ -251,23 +262,12 @@ TEST(ErrorTable, StripAndOwnEntriesEqualBruteForceOverTheirTriangles)
           double running = 0.0;
           if (m > 0)
           {
-            gmm::BlockConfig cfg;
-            cfg.level = m;
-            cfg.edgeLevel = { m, m, m, m };
-            tris.clear();
-            gmm::emitBlockGrid(qt, b, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
-              tris, scratch);
+            emitStrip(qt, b, m, side, m, tris, scratch);
             running = bruteStrict(hf, tris);
           }
           for (int n = m + 1; n < table.levels; ++n)
           {
-            gmm::BlockConfig cfg;
-            cfg.level = m;
-            cfg.edgeLevel = { m, m, m, m };
-            cfg.edgeLevel[side] = n;
-            tris.clear();
-            gmm::emitBlockGrid(qt, b, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
-              tris, scratch);
+            emitStrip(qt, b, m, side, n, tris, scratch);
             running = std::max(running, bruteStrict(hf, tris));
             expectNear(table.strip(b, side, m, n), running, "strip", b, m, n, side);
           }
