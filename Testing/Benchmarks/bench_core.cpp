@@ -3,6 +3,9 @@
 //
 //   build-c/Testing/Benchmarks/bench_core                          # 1025^2 and 4097^2
 //   GEOMIPMAP_BENCH_MAX=16385 build-c/Testing/Benchmarks/bench_core # adds 16385^2 (~1 GB)
+//   GEOMIPMAP_BENCH_MAX=32769 ...                                  # adds 32769^2 (~5.5 GB; the
+//     largest power-of-two-plus-one size the engine takes: 65537^2 has more samples than 32-bit
+//     indices reach). No full-resolution index list there: it would be 25.8 GB.
 //   GEOMIPMAP_BENCH_THREADS=1 ...                                  # table build threads (0 = all)
 //
 // BM_LodFlightFar20km: the same flight with the far plane at 20 km.
@@ -38,6 +41,8 @@ constexpr double kSpacing = 30.0;
 constexpr int kFlightFrames = 2000;
 constexpr double kStep = 5.0;      // metres per frame
 constexpr double kAltitude = 200.0; // metres above the ground under/ahead of the camera
+// Largest DEM whose full-resolution index list is built (16385^2: 6.4 GB of indices).
+constexpr int kMaxFullResolutionSize = 16385;
 
 double seconds(std::chrono::steady_clock::time_point t0)
 {
@@ -136,6 +141,7 @@ Scene& scene(int size, int blockQuads)
   auto t0 = std::chrono::steady_clock::now();
   gmm::Heightfield hf = gmm::makeSyntheticTerrain(size, size, kSpacing, 42, 1500.0, threads);
   s.generateSeconds = seconds(t0);
+  if (size <= kMaxFullResolutionSize)
   {
     std::vector<uint32_t> full;
     t0 = std::chrono::steady_clock::now();
@@ -238,7 +244,7 @@ int main(int argc, char** argv)
   const int maxSize = envInt("GEOMIPMAP_BENCH_MAX", 4097);
   const int block = envInt("GEOMIPMAP_BENCH_BLOCK", gmm::kDefaultBlockQuads);
   std::vector<int> sizes;
-  for (int s : { 1025, 4097, 16385 })
+  for (int s : { 1025, 4097, 16385, 32769 })
     if (s <= maxSize)
       sizes.push_back(s);
   // Per size: the LOD flight, then the full-resolution alternative on the same DEM (the
@@ -260,6 +266,8 @@ int main(int argc, char** argv)
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
+    if (s > kMaxFullResolutionSize)
+      continue;
     benchmark::RegisterBenchmark(("BM_FullResolutionIndices/" + std::to_string(s)).c_str(),
       [block](benchmark::State& st) { BM_FullResolutionIndices(st, block); })
       ->Arg(s)
