@@ -256,25 +256,32 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       out.blockTarget[b] = static_cast<int8_t>(nextValidLevel(w, h, m));
     }
   }
-  for (int b : drawn)
+  std::vector<BlockConfig>& configs = cache.configs;
+  std::vector<std::array<MorphEdge*, 4>>& drawnEdges = cache.edges;
+  configs.resize(drawn.size());
+  drawnEdges.resize(drawn.size());
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     // The edge level as Tessellate draws it: the coarser of two drawn blocks (both sides
     // agree), the block's top level beside a merged node (corners only: nothing on the
     // edge moves, and the node's fan keeps its perimeter still).
-    const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
+    const int b = drawn[k];
+    configs[k] = blockConfigOf(qt, levels, b);
+    drawnEdges[k] = edgesOf(qt, out, b);
     for (int side = 0; side < 4; ++side)
     {
-      edges[side]->level = static_cast<int8_t>(std::max<int>(edges[side]->level, cfg.edgeLevel[side]));
+      MorphEdge* e = drawnEdges[k][side];
+      e->level = static_cast<int8_t>(std::max<int>(e->level, configs[k].edgeLevel[side]));
     }
   }
-  for (int b : drawn)
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
+    const int b = drawn[k];
     if (out.blockTarget[b] < 0)
     {
       continue;
     }
-    for (MorphEdge* e : edgesOf(qt, out, b))
+    for (MorphEdge* e : drawnEdges[k])
     {
       if (e->level == levels[b])
       {
@@ -295,8 +302,8 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     {
       continue;
     }
-    const BlockConfig cfg = blockConfigOf(qt, levels, b);
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
+    const BlockConfig& cfg = configs[k];
+    const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
     std::array<int8_t, 10> key{ static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
       static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
       static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
@@ -335,20 +342,26 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     // The rise limit: the drawn continuous level rises no faster than the path may. Any
     // lower factor keeps the certificate (every part's bound holds on [0, t]), and the edge
     // factors below are fitted to the factor chosen here.
+    // The logarithm only where the limit can bind: the rise is at least the settle term.
     const double fPrev = cache.lastFactor[b], lambdaPrev = cache.lastLambda[b];
     if (limited && lambdaPrev >= 0.0 && fPrev > 0.0)
     {
-      const double rise = slope * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
-      t = std::min(t, std::max(0.0, lambdaPrev + rise - chainIndex(qt, b, levels[b])));
+      const double below = lambdaPrev - chainIndex(qt, b, levels[b]);
+      if (t > below + kMorphSettlePerFrame)
+      {
+        const double rise = slope * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
+        t = std::min(t, std::max(0.0, below + rise));
+      }
     }
     out.blockT[b] = factorDown(t);
   }
 
   // Edge factors: the largest factor of the blocks setting the edge, lowered until both
   // sides' strips fit their budgets with their blocks' factors.
-  for (int b : drawn)
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    for (MorphEdge* e : edgesOf(qt, out, b))
+    const int b = drawn[k];
+    for (MorphEdge* e : drawnEdges[k])
     {
       if (e->target >= 0 && e->level == levels[b])
       {
@@ -359,7 +372,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
+    const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
     for (int side = 0; side < 4; ++side)
     {
       MorphEdge& e = *edges[side];
@@ -390,7 +403,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const PartErrors& pe = *parts[k];
     const double tb = out.blockT[b];
     double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
-    const std::array<MorphEdge*, 4> edges = edgesOf(qt, out, b);
+    const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
     for (int side = 0; side < 4; ++side)
     {
       bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));

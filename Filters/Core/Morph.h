@@ -82,6 +82,10 @@ struct MorphCache
   std::vector<double> lastFactor;
   std::vector<int> lastDrawn;                // the blocks lastLambda / lastFactor hold
   std::vector<const PartErrors*> parts;      // per drawn block of a frame (scratch)
+  // Per drawn block of a frame (scratch): its configuration as Tessellate draws it and its
+  // four edges, found once and read by every pass.
+  std::vector<BlockConfig> configs;
+  std::vector<std::array<MorphEdge*, 4>> edges;
 };
 
 // The parts (MorphBounds.h masks) whose errors a change of a block's key from `was` to `now`
