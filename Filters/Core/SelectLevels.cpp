@@ -391,14 +391,6 @@ void projectionFactors(const Quadtree& qt, const View& view, const glm::dmat4& t
   }
 }
 
-double errorBudget(double tau, double factor)
-{
-  // tau / factor overflows for a huge tau or a tiny factor (a far camera); +inf would let
-  // "error <= budget" accept the +inf of levels not allowed (over nodata).
-  const double most = std::numeric_limits<double>::max();
-  return std::isfinite(factor) ? std::min(tau / factor, most) : 0.0;
-}
-
 void selectLevels(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
   const std::vector<double>& factor, double tau, std::vector<int8_t>& levels,
   SelectionScratch& scratch, MorphRamp* ramp)

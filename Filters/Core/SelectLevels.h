@@ -7,7 +7,10 @@
 #include "Quadtree.h"
 #include "View.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace gmm
@@ -80,7 +83,14 @@ private:
 // The largest stored-height error that projects within tau pixels at `factor`: tau /
 // factor, clamped to a finite value (an infinite budget would accept the +inf of levels
 // that are not allowed), 0 for an infinite factor.
-double errorBudget(double tau, double factor);
+// Inline: the quadtree walk asks it for every node it considers drawing whole.
+inline double errorBudget(double tau, double factor)
+{
+  // tau / factor overflows for a huge tau or a tiny factor (a far camera); +inf would let
+  // "error <= budget" accept the +inf of levels not allowed (over nodata).
+  const double most = std::numeric_limits<double>::max();
+  return std::isfinite(factor) ? std::min(tau / factor, most) : 0.0;
+}
 
 // Chooses the coarsest level per visible block whose projected error is <= tau pixels, then
 // refines neighbours until every side strip joined to a coarser edge is within tau too.
