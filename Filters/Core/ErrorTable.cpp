@@ -70,8 +70,7 @@ float sideStripError(const Heightfield& hf, const Quadtree& qt, int block, const
     return lines; // nothing strictly between the lines
   }
   scratch.triangles.clear();
-  emitBlockGrid(qt, block, cfg, static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + side),
-    scratch.triangles, scratch.emit);
+  emitSidePolylinesGrid(scratch.emit, side, scratch.triangles);
   return std::max(lines, stripInteriorError(hf, scratch.triangles, rows, lineA, lineB));
 }
 

@@ -215,13 +215,12 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
   }
 }
 
+// The strip of one side between its two polylines (sideLines), each side's direction
+// along the border and diagonal choice.
 template <typename Sink>
-void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
-  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch)
+void drawSideLines(Sink& sink, const std::vector<GridPoint>& outer, const std::vector<GridPoint>& inner,
+  int side)
 {
-  sideLines(r, C, R, side, edgeLevel, scratch);
-  const std::vector<GridPoint>& outer = scratch.outer;
-  const std::vector<GridPoint>& inner = scratch.inner;
   switch (side)
   {
     case South:
@@ -237,6 +236,14 @@ void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
       drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.j; }, false);
       break;
   }
+}
+
+template <typename Sink>
+void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
+  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch)
+{
+  sideLines(r, C, R, side, edgeLevel, scratch);
+  drawSideLines(sink, scratch.outer, scratch.inner, side);
 }
 
 template <typename Sink>
@@ -318,6 +325,12 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
   edgeSamples(r.i0, r.i1, config.level, scratch.cols);
   edgeSamples(r.j0, r.j1, config.level, scratch.rows);
   sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch);
+}
+
+void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out)
+{
+  GridSink sink(out);
+  drawSideLines(sink, lines.outer, lines.inner, side);
 }
 
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block)

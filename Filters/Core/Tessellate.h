@@ -89,6 +89,9 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
 // column (East, West) each. scratch.cols and rows get the block's samples at its level.
 void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int side,
   EmitScratch& scratch);
+// The side strip between the polylines sidePolylines left in `lines` (appended): the same
+// triangles as emitBlockGrid's part for that side, without finding the lines again.
+void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out);
 
 // Merged nodes (hierarchical selection): a quadtree node drawn whole, far from the eye,
 // instead of one coarsest block per leaf. It is drawn as a fan from the sample nearest its
