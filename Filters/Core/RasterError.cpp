@@ -24,6 +24,7 @@ float roundUpToFloat(double e)
 
 namespace
 {
+constexpr double kInfD = std::numeric_limits<double>::infinity();
 
 // Floor and ceiling of a / b for b > 0, any sign of a.
 int64_t floorDiv(int64_t a, int64_t b)
@@ -59,7 +60,10 @@ struct SkipLines
   int64_t a, b;
 };
 
-float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, const SkipLines* skip = nullptr)
+// Returns the error as a double (+inf for nodata when strict); callers round the maximum
+// over their triangles up to float once, which is the maximum of the rounded errors
+// (rounding up is monotone) without a nextafter per triangle.
+double triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, const SkipLines* skip = nullptr)
 {
   const int64_t nx = hf.nx;
   const int64_t ax = t.v[0].i, ay = t.v[0].j, bx = t.v[1].i, by = t.v[1].j, cx = t.v[2].i, cy = t.v[2].j;
@@ -67,7 +71,7 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
   const double za = z[ay * nx + ax], zb = z[by * nx + bx], zc = z[cy * nx + cx];
   if (std::isnan(za) || std::isnan(zb) || std::isnan(zc))
   {
-    return strict ? kInf : 0.0f;
+    return strict ? kInfD : 0.0;
   }
   // Heights relative to vertex a: the difference of two floats of similar magnitude is
   // exact in double, so the error does not depend on a constant height offset (an ECEF-like
@@ -77,7 +81,7 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
   const int64_t area = edgeFn(ax, ay, bx, by, cx, cy);
   if (area == 0)
   {
-    return 0.0f; // no sample strictly covered; cannot happen for emitted triangles
+    return 0.0; // no sample strictly covered; cannot happen for emitted triangles
   }
   // Barycentric weights times the area, w1 (of b) = edgeFn(c, a, p) and w2 (of c) =
   // edgeFn(a, b, p), at the box's first sample, and their steps per column and per row;
@@ -145,11 +149,7 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
       continue;
     }
     const bool skipping = skip && rows == skip->rows;
-    int shift = 0;
-    while ((int64_t(1) << shift) < D)
-    {
-      ++shift;
-    }
+    const int shift = __builtin_ctzll(static_cast<unsigned long long>(D)); // D is a power of two
     // Along the base: position a (i for rows, j for columns); across: position b.
     const int64_t oa = rows ? o.i : o.j, ob = rows ? o.j : o.i, baseB = rows ? p.j : p.i;
     const int64_t lowA = std::min(rows ? p.i : p.j, rows ? q.i : q.j) - oa;
@@ -174,7 +174,7 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
         weightsAt(lo, b, w1, w2);
         if (!line(z + b * nx + lo, 1, hi - lo + 1, w1, w2, w1di, w2di, false))
         {
-          return kInf;
+          return kInfD;
         }
       }
       else
@@ -182,11 +182,11 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
         weightsAt(b, lo, w1, w2);
         if (!line(z + lo * nx + b, nx, hi - lo + 1, w1, w2, w1dj, w2dj, false))
         {
-          return kInf;
+          return kInfD;
         }
       }
     }
-    return roundUpToFloat(worst / fullArea);
+    return worst / fullArea;
   }
   // The box walks below go row by row: they skip rows only.
   auto skipRow = [skip](int64_t j) { return skip && skip->rows && (j == skip->a || j == skip->b); };
@@ -223,10 +223,10 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
       if (!line(z + j * nx + i0 + lo, 1, hi - lo + 1, w1 + lo * w1di, w2 + lo * w2di, w1di, w2di,
             false))
       {
-        return kInf;
+        return kInfD;
       }
     }
-    return roundUpToFloat(worst / fullArea);
+    return worst / fullArea;
   }
   for (int64_t j = j0; j <= j1; ++j)
   {
@@ -238,10 +238,10 @@ float triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, c
     weightsAt(i0, j, w1, w2);
     if (!line(z + j * nx + i0, 1, i1 - i0 + 1, w1, w2, w1di, w2di, true))
     {
-      return kInf;
+      return kInfD;
     }
   }
-  return roundUpToFloat(worst / fullArea);
+  return worst / fullArea;
 }
 
 // Residual (h - surface) * s^2 of sample (I0 + u, J0 + v) in the cell of side s whose
@@ -305,16 +305,16 @@ float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std
 
 float trianglesError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool strictNodata)
 {
-  float worst = 0.0f;
+  double worst = 0.0;
   for (const GridTriangle& t : tris)
   {
     worst = std::max(worst, triangleError(hf, t, strictNodata));
-    if (worst == kInf)
+    if (worst == kInfD)
     {
       break;
     }
   }
-  return worst;
+  return roundUpToFloat(worst);
 }
 
 float polylineError(const Heightfield& hf, const std::vector<GridPoint>& points)
@@ -361,16 +361,16 @@ float stripInteriorError(const Heightfield& hf, const std::vector<GridTriangle>&
   int lineA, int lineB)
 {
   const SkipLines skip{ rows, lineA, lineB };
-  float worst = 0.0f;
+  double worst = 0.0;
   for (const GridTriangle& t : tris)
   {
     worst = std::max(worst, triangleError(hf, t, true, &skip));
-    if (worst == kInf)
+    if (worst == kInfD)
     {
       break;
     }
   }
-  return worst;
+  return roundUpToFloat(worst);
 }
 
 } // namespace gmm
