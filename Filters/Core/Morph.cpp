@@ -207,20 +207,62 @@ void resetMorph(const Quadtree& qt, MorphFrame& out)
 }
 } // namespace
 
+namespace
+{
+// Gives every drawn block a slot (keeping the one it held last frame) and takes the slots
+// back from the blocks no longer drawn.
+void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
+{
+  ++cache.frame;
+  cache.drawnSlots.resize(drawn.size());
+  for (std::size_t k = 0; k < drawn.size(); ++k)
+  {
+    const int b = drawn[k];
+    int32_t& s = cache.slotOf[b];
+    if (s < 0)
+    {
+      if (cache.freeSlots.empty())
+      {
+        s = static_cast<int32_t>(cache.slots.size());
+        cache.slots.emplace_back();
+      }
+      else
+      {
+        s = cache.freeSlots.back();
+        cache.freeSlots.pop_back();
+        cache.slots[s] = MorphBlockState();
+      }
+      cache.slots[s].block = b;
+    }
+    cache.slots[s].frame = cache.frame;
+    cache.drawnSlots[k] = s;
+  }
+  for (const int32_t s : cache.held)
+  {
+    MorphBlockState& state = cache.slots[s];
+    if (state.frame != cache.frame)
+    {
+      cache.slotOf[state.block] = -1;
+      cache.freeSlots.push_back(s);
+    }
+  }
+  cache.held = cache.drawnSlots;
+}
+} // namespace
+
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
   const MorphRamp* ramp, const std::vector<int>* drawnBlocks)
 {
   resetMorph(qt, out);
   const int blocks = qt.blockCount();
-  if (cache.heights != hf.heights() || static_cast<int>(cache.key.size()) != blocks)
+  if (cache.heights != hf.heights() || static_cast<int>(cache.slotOf.size()) != blocks)
   {
-    cache.key.assign(blocks, std::array<int8_t, 10>{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 });
-    cache.errors.assign(blocks, PartErrors());
+    cache.slotOf.assign(blocks, -1);
+    cache.slots.clear();
+    cache.freeSlots.clear();
+    cache.held.clear();
     cache.heights = hf.heights();
-    cache.lastLambda.assign(blocks, -1.0);
-    cache.lastFactor.assign(blocks, 0.0);
-    cache.lastDrawn.clear();
   }
   // The drawn blocks: the caller's list, or found in the levels.
   std::vector<int>& drawn = out.blocks;
@@ -238,6 +280,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       }
     }
   }
+  assignSlots(drawn, cache);
   const bool limited = ramp && ramp->active();
   const double slope = limited ? ramp->slope() : 0.0;
   auto budget = [&](int b) {
@@ -291,13 +334,14 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   }
 
   // Block factors: the inner grid, and the strips whose edge the block sets moving with it
-  // (and with the edge held, so that any lower edge factor stays certified too). parts[k]
-  // is drawn[k]'s part errors, or none when it does not morph.
-  std::vector<const PartErrors*>& parts = cache.parts;
-  parts.assign(drawn.size(), nullptr);
+  // (and with the edge held, so that any lower edge factor stays certified too).
+  // morphs[k]: drawn[k] morphs, and its slot's errors are this frame's.
+  std::vector<uint8_t>& morphs = cache.morphs;
+  morphs.assign(drawn.size(), 0);
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
+    MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
     if (out.blockTarget[b] < 0 || budget(b) < 0.0)
     {
       continue;
@@ -308,15 +352,15 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
       static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
       edges[2]->target, edges[3]->target };
-    if (key != cache.key[b])
+    if (key != state.key)
     {
       const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
-      updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, changedMorphParts(cache.key[b], key),
-        cache.errors[b], cache.scratch);
-      cache.key[b] = key;
+      updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, changedMorphParts(state.key, key),
+        state.errors, cache.scratch);
+      state.key = key;
     }
-    const PartErrors& pe = cache.errors[b];
-    parts[k] = &pe;
+    const PartErrors& pe = state.errors;
+    morphs[k] = 1;
     const double x = budget(b);
     double t = pe.innerFrozen ? 0.0 : linearReach(pe.inner[0], pe.inner[1], x);
     for (int side = 0; side < 4; ++side)
@@ -343,7 +387,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     // lower factor keeps the certificate (every part's bound holds on [0, t]), and the edge
     // factors below are fitted to the factor chosen here.
     // The logarithm only where the limit can bind: the rise is at least the settle term.
-    const double fPrev = cache.lastFactor[b], lambdaPrev = cache.lastLambda[b];
+    const double fPrev = state.lastFactor, lambdaPrev = state.lastLambda;
     if (limited && lambdaPrev >= 0.0 && fPrev > 0.0)
     {
       const double below = lambdaPrev - chainIndex(qt, b, levels[b]);
@@ -373,6 +417,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   {
     const int b = drawn[k];
     const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
+    const PartErrors& pe = cache.slots[cache.drawnSlots[k]].errors;
     for (int side = 0; side < 4; ++side)
     {
       MorphEdge& e = *edges[side];
@@ -380,14 +425,13 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       {
         continue;
       }
-      const PartErrors* pe = parts[k];
-      if (!pe || pe->sideFrozen[side])
+      if (!morphs[k] || pe.sideFrozen[side])
       {
         e.t = 0.0f; // a block that does not morph holds its edges
         continue;
       }
       const double tb = out.blockT[b];
-      const double* q = pe->side[side];
+      const double* q = pe.side[side];
       const double at0 = stripBound(q, 0.0, tb), at1 = stripBound(q, 1.0, tb);
       e.t = std::min(e.t, factorDown(linearReach(at0, at1, budget(b))));
     }
@@ -395,12 +439,12 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
 
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    if (!parts[k])
+    if (!morphs[k])
     {
       continue;
     }
     const int b = drawn[k];
-    const PartErrors& pe = *parts[k];
+    const PartErrors& pe = cache.slots[cache.drawnSlots[k]].errors;
     const double tb = out.blockT[b];
     double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
     const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
@@ -410,25 +454,14 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
     out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
   }
-  // History for the next frame's rise limit (none from a frame without the path): the last
-  // frame's drawn blocks are forgotten, this frame's recorded.
-  for (int b : cache.lastDrawn)
+  // History for the next frame's rise limit (none from a frame without the path).
+  for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    cache.lastLambda[b] = -1.0;
-    cache.lastFactor[b] = 0.0;
-  }
-  cache.lastDrawn.clear();
-  if (limited)
-  {
-    for (int b : drawn)
-    {
-      if (b < static_cast<int>(factor.size()))
-      {
-        cache.lastLambda[b] = chainIndex(qt, b, levels[b]) + out.blockT[b];
-        cache.lastFactor[b] = factor[b];
-        cache.lastDrawn.push_back(b);
-      }
-    }
+    const int b = drawn[k];
+    MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
+    const bool keep = limited && b < static_cast<int>(factor.size());
+    state.lastLambda = keep ? chainIndex(qt, b, levels[b]) + out.blockT[b] : -1.0;
+    state.lastFactor = keep ? factor[b] : 0.0;
   }
 }
 

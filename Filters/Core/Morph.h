@@ -66,26 +66,51 @@ struct MorphFrame
 };
 
 
-// Per-block part errors of the configuration each block was last seen with, so that a frame
-// computes them only for blocks whose configuration or targets changed. One per engine.
+// What computeMorph remembers of one drawn block from frame to frame.
+struct MorphBlockState
+{
+  // The key its part errors are of (level, 4 edge levels, target, 4 edge targets); a
+  // changed key recomputes the parts changedMorphParts names.
+  std::array<int8_t, 10> key{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 };
+  PartErrors errors;
+  // The rate limit (MorphRamp.h, kMorphSettlePerFrame): the block's drawn continuous level
+  // (chain index + factor; -1 when the frame did not follow the path) and projection factor
+  // in the last frame.
+  double lastLambda = -1.0;
+  double lastFactor = 0.0;
+  int block = -1;
+  uint32_t frame = 0; // the last frame (MorphCache::frame) that drew it
+};
+
+// Per-block state of the blocks drawn in the last frame, so that a frame computes part
+// errors only for blocks whose configuration or targets changed. One per engine.
+//
+// The state lives in a pool of slots, one per drawn block, packed together: a frame touches
+// a few hundred kilobytes instead of entries spread over DEM-sized arrays (40 MB of part
+// errors at 16385^2 cost a TLB miss per block). A block that stops being drawn gives its slot
+// back; when it is drawn again its errors are computed afresh (they depend on the key only).
 struct MorphCache
 {
-  // Per block: the key its part errors are of (level, 4 edge levels, target, 4 edge
-  // targets) and the errors; a changed key recomputes the parts changedMorphParts names.
-  std::vector<std::array<int8_t, 10>> key;
-  std::vector<PartErrors> errors;
-  const void* heights = nullptr; // the heights the errors are of (reset on change)
+  std::vector<int32_t> slotOf;          // per block: its slot, or -1
+  std::vector<MorphBlockState> slots;
+  std::vector<int32_t> freeSlots;
+  std::vector<int32_t> held;            // the slots of the last frame's drawn blocks
+  uint32_t frame = 0;                   // frames computed with this cache
+  const void* heights = nullptr;        // the heights the errors are of (reset on change)
   EmitScratch scratch;
-  // The rate limit (MorphRamp.h, kMorphSettlePerFrame): each block's drawn continuous level
-  // (chain index + factor; -1 when not drawn) and projection factor in the last frame.
-  std::vector<double> lastLambda;
-  std::vector<double> lastFactor;
-  std::vector<int> lastDrawn;                // the blocks lastLambda / lastFactor hold
-  std::vector<const PartErrors*> parts;      // per drawn block of a frame (scratch)
-  // Per drawn block of a frame (scratch): its configuration as Tessellate draws it and its
-  // four edges, found once and read by every pass.
+  // Per drawn block of a frame (scratch): its slot, its configuration as Tessellate draws
+  // it and its four edges, found once and read by every pass.
+  std::vector<int32_t> drawnSlots;
   std::vector<BlockConfig> configs;
   std::vector<std::array<MorphEdge*, 4>> edges;
+  std::vector<uint8_t> morphs;          // per drawn block: its factors were computed
+
+  // The rise limit's history of block b: its drawn continuous level in the last frame, or
+  // -1 when it was not drawn or that frame did not follow the path.
+  double lastLambda(int b) const
+  {
+    return b >= 0 && b < static_cast<int>(slotOf.size()) && slotOf[b] >= 0 ? slots[slotOf[b]].lastLambda : -1.0;
+  }
 };
 
 // The parts (MorphBounds.h masks) whose errors a change of a block's key from `was` to `now`

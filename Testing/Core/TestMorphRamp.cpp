@@ -323,7 +323,7 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
     // The rise limit's history holds exactly this frame's drawn blocks.
     for (int b = 0; b < e.quadtree().blockCount(); ++b)
     {
-      ASSERT_EQ(reusedCache.lastLambda[b] >= 0.0, e.levels()[b] >= 0) << "frame " << f << " block " << b;
+      ASSERT_EQ(reusedCache.lastLambda(b) >= 0.0, e.levels()[b] >= 0) << "frame " << f << " block " << b;
     }
     compared += !e.drawnBlocks().empty();
   }
