@@ -74,7 +74,7 @@ const FrameStats& Engine::update(const View& view, double tau)
     const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
     const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
     const BoxProjector projector(view, toWorld, metric_);
-    selectHierarchically(&frustum, [&](const Box& b) { return projector.factor(b); }, tau, ramp);
+    selectHierarchically(&frustum, &projector, tau, ramp);
     return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
   }
   cullAndProject(view);
@@ -147,7 +147,7 @@ const FrameStats& Engine::updateForError(double maxError)
   // The table holds stored-height errors; the bound is in the scaled surface's units.
   if (mergedNodes_)
   {
-    selectHierarchically(nullptr, [](const Box&) { return 1.0; }, maxError / heightScale_);
+    selectHierarchically(nullptr, nullptr, maxError / heightScale_);
     return finishFrame(nullptr, &visibleList_, &nodeSelection_.merged);
   }
   selectLevelsForError(terrain_->qt, terrain_->table, maxError / heightScale_, levels_);
@@ -155,10 +155,10 @@ const FrameStats& Engine::updateForError(double maxError)
 }
 
 void Engine::selectHierarchically(const Frustum* frustum,
-  const std::function<double(const Box&)>& factorOf, double tau, MorphRamp* ramp)
+  const BoxProjector* projector, double tau, MorphRamp* ramp)
 {
   const Terrain& t = *terrain_;
-  selectNodes(t.qt, t.table, frustum, factorOf, tau, nodeSelection_, nodeScratch_, selectScratch_, ramp);
+  selectNodes(t.qt, t.table, frustum, projector, tau, nodeSelection_, nodeScratch_, selectScratch_, ramp);
   // The engine's per-block lists take the selection's (swapped: both are rebuilt per frame).
   levels_.swap(nodeSelection_.levels);
   factor_.swap(nodeSelection_.factor);

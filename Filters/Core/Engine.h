@@ -151,8 +151,9 @@ private:
   // selection (blocks and merged nodes).
   std::size_t hierarchicalTriangles() const;
   double hierarchicalError() const;
-  // Hierarchical selection for update (frustum and projector given) or updateForError.
-  void selectHierarchically(const Frustum* frustum, const std::function<double(const Box&)>& factorOf,
+  // Hierarchical selection for update (frustum and projector given) or updateForError
+  // (both null).
+  void selectHierarchically(const Frustum* frustum, const BoxProjector* projector,
     double tau, MorphRamp* ramp = nullptr);
 
   // Never null: an empty Terrain when there is no heightfield.

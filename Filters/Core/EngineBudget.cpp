@@ -91,9 +91,8 @@ bool Engine::selectHierarchicallyWithinBudget(
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
   const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
   const BoxProjector projector(view, toWorld, metric_);
-  const auto factorOf = [&](const Box& b) { return projector.factor(b); };
   auto select = [&](double x) {
-    selectHierarchically(&frustum, factorOf, x);
+    selectHierarchically(&frustum, &projector, x);
     return hierarchicalTriangles();
   };
   // The best selection so far is kept aside (the selection's own vectors are swapped in by

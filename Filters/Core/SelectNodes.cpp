@@ -15,12 +15,11 @@ class Walk
 {
 public:
   Walk(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
-    const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
-    NodeScratch& ns)
+    const BoxProjector* projector, double tau, NodeSelection& out, NodeScratch& ns)
     : qt_(qt)
     , table_(table)
     , frustum_(frustum)
-    , factorOf_(factorOf)
+    , projector_(projector)
     , tau_(tau)
     , out_(out)
     , ns_(ns)
@@ -51,7 +50,7 @@ public:
     const float e = table_.mergedError[index];
     if (!ns_.split[index] && e < std::numeric_limits<float>::infinity())
     {
-      const double f = factorOf_(n.box);
+      const double f = factorOf(n.box);
       if (e <= errorBudget(tau_, f))
       {
         merge(index, f);
@@ -63,6 +62,8 @@ public:
       node(n.firstChild + k, inside);
     }
   }
+
+  double factorOf(const Box& box) const { return projector_ ? projector_->factor(box) : 1.0; }
 
   void merge(int index, double f)
   {
@@ -120,7 +121,7 @@ private:
   const Quadtree& qt_;
   const ErrorTable& table_;
   const Frustum* frustum_;
-  const std::function<double(const Box&)>& factorOf_;
+  const BoxProjector* projector_;
   double tau_;
   NodeSelection& out_;
   NodeScratch& ns_;
@@ -129,8 +130,8 @@ private:
 } // namespace
 
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
-  const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
-  NodeScratch& ns, SelectionScratch& scratch, MorphRamp* ramp)
+  const BoxProjector* projector, double tau, NodeSelection& out, NodeScratch& ns,
+  SelectionScratch& scratch, MorphRamp* ramp)
 {
   const std::size_t blocks = static_cast<std::size_t>(qt.blockCount());
   out.blocks.clear();
@@ -153,13 +154,13 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   {
     return;
   }
-  Walk walk(qt, table, frustum, factorOf, tau, out, ns);
+  Walk walk(qt, table, frustum, projector, tau, out, ns);
   walk.node(0, false);
   for (;;)
   {
     for (int b : ns.newBlocks)
     {
-      out.factor[b] = factorOf(qt.blockBox[b]);
+      out.factor[b] = walk.factorOf(qt.blockBox[b]);
       scratch.budget[b] = errorBudget(tau, out.factor[b]);
       out.levels[b] = static_cast<int8_t>(leafLevel(qt, table, b, scratch.budget[b], ramp));
     }

@@ -16,7 +16,6 @@
 #include "View.h"
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace gmm
@@ -33,8 +32,9 @@ struct NodeScratch
 
 // The selection: blocks drawn one by one (levels >= 0, listed in `blocks`), merged nodes
 // (`merged`, with their factors in `mergedFactor`), and kCoveredLevel for the blocks below
-// those. `frustum` null: everything is in view (view-independent mode). factorOf(box):
-// pixels per unit of error for the box (1 in view-independent mode, tau then a length).
+// those. `frustum` null: everything is in view (view-independent mode). `projector` gives
+// each box's pixels per unit of error; null: 1 for every box (view-independent mode, tau
+// then a length).
 struct NodeSelection
 {
   std::vector<int> blocks;
@@ -45,7 +45,7 @@ struct NodeSelection
 };
 
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
-  const std::function<double(const Box&)>& factorOf, double tau, NodeSelection& out,
+  const BoxProjector* projector, double tau, NodeSelection& out,
   NodeScratch& nodeScratch, SelectionScratch& scratch, MorphRamp* ramp = nullptr);
 
 } // namespace gmm
