@@ -338,6 +338,14 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   // morphs[k]: drawn[k] morphs, and its slot's errors are this frame's.
   std::vector<uint8_t>& morphs = cache.morphs;
   morphs.assign(drawn.size(), 0);
+  // Each drawn block's level as an index into its chain (MorphRamp.h), for the rise limit
+  // and its history.
+  std::vector<int>& chainAt = cache.chainAt;
+  chainAt.resize(drawn.size());
+  for (std::size_t k = 0; k < drawn.size() && limited; ++k)
+  {
+    chainAt[k] = chainIndex(qt, drawn[k], levels[drawn[k]]);
+  }
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
@@ -390,7 +398,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const double fPrev = state.lastFactor, lambdaPrev = state.lastLambda;
     if (limited && lambdaPrev >= 0.0 && fPrev > 0.0)
     {
-      const double below = lambdaPrev - chainIndex(qt, b, levels[b]);
+      const double below = lambdaPrev - chainAt[k];
       if (t > below + kMorphSettlePerFrame)
       {
         const double rise = slope * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
@@ -460,7 +468,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const int b = drawn[k];
     MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
     const bool keep = limited && b < static_cast<int>(factor.size());
-    state.lastLambda = keep ? chainIndex(qt, b, levels[b]) + out.blockT[b] : -1.0;
+    state.lastLambda = keep ? chainAt[k] + out.blockT[b] : -1.0;
     state.lastFactor = keep ? factor[b] : 0.0;
   }
 }

@@ -104,6 +104,7 @@ struct MorphCache
   std::vector<BlockConfig> configs;
   std::vector<std::array<MorphEdge*, 4>> edges;
   std::vector<uint8_t> morphs;          // per drawn block: its factors were computed
+  std::vector<int> chainAt;             // per drawn block: chainIndex of its level
 
   // The rise limit's history of block b: its drawn continuous level in the last frame, or
   // -1 when it was not drawn or that frame did not follow the path.
