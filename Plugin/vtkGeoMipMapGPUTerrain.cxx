@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 
 namespace
 {
@@ -38,7 +39,30 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
   }
   r.HeightsError = this->Layout.Plan(hf.nx, hf.ny, maxSize, maxLayers);
   const auto heightFormat = vtkGeoMipMapSampleTexture::FormatFor(in.Heights, false);
-  if (r.HeightsError.empty() && !this->Heights.IsCurrent(in.Heights, heightFormat, this->Layout))
+  // Heights read in place where the renderer shares this process's memory; a texture
+  // otherwise, or when sharing fails.
+  const bool share = in.ShareHeights && vtkGeoMipMapSharedHeights::SharesFormat(in.Heights, heightFormat) &&
+    vtkGeoMipMapSharedHeights::Usable(win);
+  // MaximumTileSize bounds the bands as it bounds the layers (tests use it for many bands).
+  const vtkIdType maxBand = in.MaximumTileSize > 0 ? vtkIdType(in.MaximumTileSize) * in.MaximumTileSize : 0;
+  if (r.HeightsError.empty() && share && !this->Shared.IsCurrent(in.Heights, heightFormat, maxBand))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string why =
+      this->Shared.Share(win, in.Heights, heightFormat, in.Heights->GetNumberOfTuples(), maxBand);
+    r.UploadSeconds += SecondsSince(start);
+    ++r.Uploads;
+    if (why.empty())
+    {
+      this->Heights.Release(win);
+    }
+  }
+  if (!(share && this->Shared.HasData()))
+  {
+    this->Shared.Release(win);
+  }
+  if (r.HeightsError.empty() && !this->Shared.HasData() &&
+    !this->Heights.IsCurrent(in.Heights, heightFormat, this->Layout))
   {
     const auto start = std::chrono::steady_clock::now();
     r.HeightsError = this->Heights.Upload(win, in.Heights, heightFormat, this->Layout);
@@ -47,7 +71,12 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
   }
   // Slopes for the fragment normals, only while lit (made from the engine's float heights).
   this->Lit = in.Lit;
-  if (r.HeightsError.empty() && in.Lit &&
+  this->Shading.SlopesFromHeights = in.Lit && !in.SlopeTexture;
+  if (this->Shading.SlopesFromHeights)
+  {
+    this->Slopes.Release(win);
+  }
+  if (r.HeightsError.empty() && in.Lit && !this->Shading.SlopesFromHeights &&
     !this->Slopes.IsCurrent(in.Heights, vtkGeoMipMapSampleTexture::Slopes16F, this->Layout))
   {
     const auto start = std::chrono::steady_clock::now();
@@ -59,6 +88,7 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     return r;
   }
   this->Shading.SingleLayer = this->Layout.Layers() == 1;
+  this->Shading.HeightBands = this->Shared.GetBands();
   this->Shading.HeightFormat = heightFormat == vtkGeoMipMapSampleTexture::Int16 ? O::Int16Heights
     : heightFormat == vtkGeoMipMapSampleTexture::UInt16                         ? O::UInt16Heights
                                                                                  : O::FloatHeights;
@@ -117,7 +147,14 @@ void vtkGeoMipMapGPUTerrain::Bind()
 {
   using O = vtkGeoMipMapShaders::Options;
   const O::Coloring c = this->Shading.Color;
-  this->HeightsUnit = this->Heights.Activate();
+  if (this->Shared.HasData())
+  {
+    this->Shared.Activate(this->BandUnits);
+  }
+  else
+  {
+    this->HeightsUnit = this->Heights.Activate();
+  }
   this->SlopesUnit = this->Lit && this->Slopes.HasData() ? this->Slopes.Activate() : -1;
   this->ColorsUnit = c == O::MapScalars || c == O::DirectColors ? this->Colors.Activate() : -1;
   this->TableUnit = c == O::MapHeights || c == O::MapScalars ? this->Table.Activate() : -1;
@@ -142,7 +179,15 @@ void vtkGeoMipMapGPUTerrain::Unbind()
   {
     this->Slopes.Deactivate();
   }
-  this->Heights.Deactivate();
+  if (this->Shared.HasData())
+  {
+    this->Shared.Deactivate();
+  }
+  else
+  {
+    this->Heights.Deactivate();
+  }
+  this->BandUnits.clear();
   this->HeightsUnit = this->SlopesUnit = this->ColorsUnit = this->TableUnit = this->DrapeUnit = -1;
 }
 
@@ -169,6 +214,11 @@ void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightf
       p->SetUniform2f(name, v);
   };
   seti("gmmHeights", this->HeightsUnit);
+  for (std::size_t k = 0; k < this->BandUnits.size(); ++k)
+  {
+    seti(("gmmHeightBand" + std::to_string(k)).c_str(), this->BandUnits[k]);
+  }
+  seti("gmmBandShift", this->Shared.GetBandShift());
   seti("gmmSlopes", this->SlopesUnit);
   seti("gmmColors", this->ColorsUnit);
   seti("gmmScalars", this->ColorsUnit);
@@ -206,6 +256,7 @@ void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightf
 void vtkGeoMipMapGPUTerrain::Release(vtkWindow* win)
 {
   this->Heights.Release(win);
+  this->Shared.Release(win);
   this->Slopes.Release(win);
   this->Colors.Release(win);
   this->Table.Release(win);
@@ -215,6 +266,7 @@ void vtkGeoMipMapGPUTerrain::Release(vtkWindow* win)
 void vtkGeoMipMapGPUTerrain::Forget()
 {
   this->Heights.Forget();
+  this->Shared.Forget();
   this->Slopes.Forget();
   this->Colors.Forget();
 }

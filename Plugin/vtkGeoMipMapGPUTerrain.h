@@ -14,10 +14,12 @@
 #ifndef vtkGeoMipMapGPUTerrain_h
 #define vtkGeoMipMapGPUTerrain_h
 
-#include "vtkGeoMipMapShaders.h"  // For vtkGeoMipMapShaders::Options
-#include "vtkGeoMipMapTextures.h" // For the textures
+#include "vtkGeoMipMapShaders.h"       // For vtkGeoMipMapShaders::Options
+#include "vtkGeoMipMapSharedHeights.h" // For the heights read in place
+#include "vtkGeoMipMapTextures.h"      // For the textures
 
 #include <string> // For std::string
+#include <vector> // For std::vector
 
 class vtkDataArray;
 class vtkImageData;
@@ -40,7 +42,10 @@ public:
     vtkDataArray* Heights = nullptr;
     const gmm::Heightfield* HF = nullptr;
     bool Lit = false;           // slopes wanted for the fragment normals
+    bool SlopeTexture = true;   // lit: slopes from a texture, else from the heights per fragment
     int MaximumTileSize = 0;    // 0: GL_MAX_TEXTURE_SIZE
+    bool ShareHeights = true;   // read the heights in place where the renderer allows
+                                // (vtkGeoMipMapSharedHeights::Usable)
     vtkDataArray* Color = nullptr; // colouring array, or null for the actor's colour
     bool DirectColors = false;  // Color holds unsigned char colours, not scalars
     vtkScalarsToColors* Lookup = nullptr; // for scalars, its range already set
@@ -61,7 +66,9 @@ public:
   const vtkGeoMipMapShaders::Options& GetShading() const { return this->Shading; }
   void SetTextureCoordinates(bool on) { this->Shading.TextureCoordinates = on; }
   void SetMorph(bool on) { this->Shading.Morph = on; }
-  bool HasHeights() const { return this->Heights.HasData(); }
+  bool HasHeights() const { return this->Heights.HasData() || this->Shared.HasData(); }
+  /** True when the heights are read in place (no height texture). */
+  bool SharesHeights() const { return this->Shared.HasData(); }
   size_t GetBytes() const;
 
   /** Texture units for a draw; Unbind() after it. */
@@ -83,6 +90,8 @@ public:
 private:
   vtkGeoMipMapTileLayout Layout;
   vtkGeoMipMapSampleTexture Heights;
+  vtkGeoMipMapSharedHeights Shared; // instead of Heights, where it applies
+  std::vector<int> BandUnits;
   vtkGeoMipMapSampleTexture Slopes;
   vtkGeoMipMapSampleTexture Colors;
   vtkGeoMipMapColorTable Table;

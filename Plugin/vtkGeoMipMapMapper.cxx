@@ -337,6 +337,11 @@ bool vtkGeoMipMapMapper::GetIndicesReused() const
   return this->LastFrameDrawn && (this->LastFrameFrozen || this->Internal->Engine.stats().reused);
 }
 
+bool vtkGeoMipMapMapper::GetHeightsShared() const
+{
+  return this->Internal->GPU.SharesHeights();
+}
+
 vtkTypeInt64 vtkGeoMipMapMapper::GetGPUMemoryBytes() const
 {
   const Internals& in = *this->Internal;
@@ -682,6 +687,8 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   gpu.HF = &in.Engine.heightfield();
   gpu.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
   gpu.MaximumTileSize = this->MaximumTileSize;
+  gpu.ShareHeights = this->ShareHeights;
+  gpu.SlopeTexture = this->SlopeTexture;
   // Colouring: the array VTK's own mappers would colour by, on the GPU as well.
   int cellFlag = 0;
   gpu.Color = this->ScalarVisibility
@@ -1114,6 +1121,8 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
+  os << indent << "ShareHeights: " << this->ShareHeights << "\n";
+  os << indent << "SlopeTexture: " << this->SlopeTexture << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
   os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";

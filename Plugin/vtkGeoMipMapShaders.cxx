@@ -6,17 +6,44 @@
 namespace
 {
 
-const char* SamplerFor(vtkGeoMipMapShaders::Options::Heights h)
+// The sampler type of the heights: "isampler", "usampler" or "sampler", + `kind`.
+std::string SamplerFor(vtkGeoMipMapShaders::Options::Heights h, const char* kind)
 {
   switch (h)
   {
     case vtkGeoMipMapShaders::Options::Int16Heights:
-      return "isampler2DArray";
+      return std::string("isampler") + kind;
     case vtkGeoMipMapShaders::Options::UInt16Heights:
-      return "usampler2DArray";
+      return std::string("usampler") + kind;
     default:
-      return "sampler2DArray";
+      return std::string("sampler") + kind;
   }
+}
+
+// Heights read in place (vtkGeoMipMapSharedHeights.h): sample j * nx + i of bands of
+// 2^gmmBandShift samples, one buffer texture each. The band is picked by a chain of
+// branches: indexing an array of samplers by a value that differs between vertices is
+// undefined in GLSL 4.5.
+std::string SharedHeightFetch(const vtkGeoMipMapShaders::Options& o)
+{
+  std::string s = "uniform int gmmBandShift;\n";
+  for (int k = 0; k < o.HeightBands; ++k)
+  {
+    s += "uniform highp " + SamplerFor(o.HeightFormat, "Buffer") + " gmmHeightBand" + std::to_string(k) + ";\n";
+  }
+  s += "float gmmHeight(ivec2 ij)\n"
+       "{\n"
+       "  int k = ij.y * gmmGridSize.x + ij.x;\n";
+  if (o.HeightBands == 1)
+  {
+    return s + "  return float(texelFetch(gmmHeightBand0, k).r);\n}\n";
+  }
+  s += "  int band = k >> gmmBandShift, t = k - (band << gmmBandShift);\n";
+  for (int k = 0; k + 1 < o.HeightBands; ++k)
+  {
+    s += "  if (band == " + std::to_string(k) + ") { return float(texelFetch(gmmHeightBand" + std::to_string(k) + ", t).r); }\n";
+  }
+  return s + "  return float(texelFetch(gmmHeightBand" + std::to_string(o.HeightBands - 1) + ", t).r);\n}\n";
 }
 
 // Sample (i, j) of a tiled array texture (vtkGeoMipMapTextures.h): layer, then texel. One
@@ -25,8 +52,7 @@ const char* SamplerFor(vtkGeoMipMapShaders::Options::Heights h)
 // division is scalarised, hence slow, on software rasterisers.
 std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
 {
-  std::string s = std::string("uniform highp ") + SamplerFor(o.HeightFormat) +
-    " gmmHeights;\n"
+  std::string s = (o.HeightBands > 0 ? std::string() : "uniform highp " + SamplerFor(o.HeightFormat, "2DArray") + " gmmHeights;\n") +
     "uniform ivec2 gmmGridSize;   // samples nx, ny\n"
     "uniform ivec2 gmmTileSize;   // texels per layer\n"
     "uniform vec2 gmmTileScale;   // 1 / texels per layer\n"
@@ -45,7 +71,9 @@ std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
          "  return ivec3(ij - tile * gmmTileSize, tile.y * gmmTilesX + tile.x);\n"
          "}\n";
   }
-  s += "float gmmHeight(ivec2 ij) { return float(texelFetch(gmmHeights, gmmTexel(ij), 0).r); }\n";
+  s += o.HeightBands > 0
+    ? SharedHeightFetch(o)
+    : "float gmmHeight(ivec2 ij) { return float(texelFetch(gmmHeights, gmmTexel(ij), 0).r); }\n";
   return s;
 }
 
@@ -75,6 +103,30 @@ const char* const kQuad =
 const char* const kNormal =
   "uniform highp sampler2DArray gmmSlopes;\n"
   "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n"
+  "vec3 gmmNormalMC(GmmTri t)\n"
+  "{\n"
+  "  vec2 g = t.w.x * gmmSlope(t.c) + t.w.y * gmmSlope(t.c + t.d) + t.w.z * gmmSlope(t.c + ivec2(1));\n"
+  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
+  "}\n";
+// Heights read in place and no slope texture: the slopes of the triangle's three samples by
+// central differences from the heights, by vtkGeoMipMapConversion::SampleNormal's rule
+// (one-sided next to the border or nodata, 0 where neither neighbour is valid).
+const char* const kNormalFromHeights =
+  "float gmmSlope1(ivec2 p, ivec2 step, bool hasA, bool hasB, float hc, float spacing)\n"
+  "{\n"
+  "  float ha = hasA ? gmmHeight(p - step) : 0.0, hb = hasB ? gmmHeight(p + step) : 0.0;\n"
+  "  bool okA = hasA && gmmValid(ha), okB = hasB && gmmValid(hb), okC = gmmValid(hc);\n"
+  "  if (okA && okB) { return (hb - ha) / (2.0 * spacing); }\n"
+  "  if (okB && okC) { return (hb - hc) / spacing; }\n"
+  "  if (okA && okC) { return (hc - ha) / spacing; }\n"
+  "  return 0.0;\n"
+  "}\n"
+  "vec2 gmmSlope(ivec2 p)\n"
+  "{\n"
+  "  float hc = gmmHeight(p);\n"
+  "  return vec2(gmmSlope1(p, ivec2(1, 0), p.x > 0, p.x + 1 < gmmGridSize.x, hc, gmmSpacing.x),\n"
+  "    gmmSlope1(p, ivec2(0, 1), p.y > 0, p.y + 1 < gmmGridSize.y, hc, gmmSpacing.y));\n"
+  "}\n"
   "vec3 gmmNormalMC(GmmTri t)\n"
   "{\n"
   "  vec2 g = t.w.x * gmmSlope(t.c) + t.w.y * gmmSlope(t.c + t.d) + t.w.z * gmmSlope(t.c + ivec2(1));\n"
@@ -235,7 +287,8 @@ std::string Options::Key() const
 {
   return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
     (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n") +
-    (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-") + (this->Morph ? "m" : "-");
+    (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-") + (this->Morph ? "m" : "-") + "b" +
+    std::to_string(this->HeightBands) + (this->SlopesFromHeights ? "s" : "-");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
@@ -325,11 +378,13 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   const bool lit = fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos;
   const bool colored = o.Color != Options::PropertyColor;
   vtkShaderProgram::Substitute(fs, "//GMM::Dec",
-    FetchFunctions(o) + kQuad + (lit ? (o.SingleLayer ? kNormalBilinear : kNormal) : "") +
+    FetchFunctions(o) + kQuad +
+      (lit ? (o.SlopesFromHeights ? kNormalFromHeights : o.SingleLayer ? kNormalBilinear : kNormal) : "") +
       ColorFunctions(o) + (o.Drape ? kDrape : ""));
   // The level-0 triangle under the fragment, where full-resolution values are interpolated
   // per fragment (colouring arrays; normals of DEMs in several layers).
-  const bool triangle = (colored && o.Color != Options::MapHeights) || (lit && !o.SingleLayer);
+  const bool triangle =
+    (colored && o.Color != Options::MapHeights) || (lit && (!o.SingleLayer || o.SlopesFromHeights));
   std::string color = triangle ? "  GmmTri gmmT = gmmTriangle(gmmGridVSOutput);\n"
                                : "  GmmTri gmmT;\n";
   if (colored)

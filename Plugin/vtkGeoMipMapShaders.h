@@ -50,6 +50,9 @@ struct Options
   bool LogScale = false;           // the lookup table maps log10 of the scalars
   bool Drape = false;              // an image is draped over the colouring
   bool Morph = false;              // vertices are geomorphed (vtkGeoMipMapMorphTexture.h)
+  int HeightBands = 0; // > 0: heights read in place from this many buffer textures
+                       // (vtkGeoMipMapSharedHeights.h) instead of the height texture
+  bool SlopesFromHeights = false; // lit: slopes computed per fragment, no slope texture
 
   /** A short string that differs when the shader source must differ. */
   std::string Key() const;

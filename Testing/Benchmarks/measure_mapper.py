@@ -5,7 +5,10 @@ llvmpipe the "GPU" textures and buffers live in the same RSS, so one run per DEM
 height type gives an honest bytes-per-sample figure, input image included.
 
     xvfb-run -a /usr/bin/python3 measure_mapper.py 8193 [float32|int16] [--frames 24]
-        [--no-color] [--no-lighting]
+        [--no-color] [--no-lighting] [--no-share] [--no-slope-texture]
+
+--no-share: heights always in a texture (ShareHeights off), as on a GPU with its own memory.
+--no-slope-texture: slopes computed per fragment from the heights (SlopeTexture off).
 
 Steps, each timed: generate the DEM (vtkGeoMipMapFractalSource; int16 = the same heights
 rounded, converted in row bands so no second float copy is held), first frame (the
@@ -80,6 +83,10 @@ def main(argv):
     mapper.SetScalarRange(0.0, 1500.0)
     if "--no-color" in argv:
         mapper.ScalarVisibilityOff()
+    if "--no-share" in argv and hasattr(mapper, "SetShareHeights"):
+        mapper.SetShareHeights(False)
+    if "--no-slope-texture" in argv and hasattr(mapper, "SetSlopeTexture"):
+        mapper.SetSlopeTexture(False)
     actor = vtkActor()
     actor.SetMapper(mapper)
     if "--no-lighting" in argv:
@@ -115,7 +122,8 @@ def main(argv):
     for key, name in (("terrain_build_s", "GetLastTerrainBuildTime"),
                       ("height_upload_s", "GetLastHeightUploadTime"),
                       ("gpu_bytes", "GetGPUMemoryBytes"),
-                      ("tables_from_cache", "GetLastTablesFromCache")):
+                      ("tables_from_cache", "GetLastTablesFromCache"),
+                      ("heights_shared", "GetHeightsShared")):
         out[key] = getattr(mapper, name)() if hasattr(mapper, name) else None
     out["rss_after_first_frame_mb"] = rss_mb()
     times, cpu, tris = [], [], []

@@ -14,7 +14,15 @@ vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
   unsigned char RGB colours matches the stock mapper colouring by the same array
   (InterpolateScalarsBeforeMapping on);
 - a MemoryLimit below the DEM's needs refuses it with an error naming both sizes and draws
-  nothing; lifting the limit draws it.
+  nothing; lifting the limit draws it;
+- heights read in place (ShareHeights, where the renderer runs on the CPU: llvmpipe here)
+  draw the texture path's surface bit for bit (depth buffers and pixels) for float, int16
+  and uint16 heights, in one band and in many (MaximumTileSize 64: bands of 4096 samples),
+  from 4 (float) or 2 (16-bit) bytes a sample less; elsewhere the texture is used.
+- lit with the slopes computed per fragment from the heights (SlopeTexture off): the
+  slope texture's picture within its rounding, with a nodata hole too, 4 bytes a sample
+  less.
+The texture-path cases run with ShareHeights off, as on a GPU with its own memory.
 """
 
 import numpy as np
@@ -62,6 +70,7 @@ def ours(img, **kw):
     m.SetInputData(img)
     m.SetPixelError(0.5)
     m.ScalarVisibilityOff()
+    m.SetShareHeights(kw.pop("ShareHeights", False))
     for k, v in kw.items():
         getattr(m, "Set" + k)(v)
     a = vtkActor()
@@ -125,6 +134,62 @@ for name in ("int16", "uint16"):
     check(gpu["float32"] - gpu[name] == 2 * zf.size,
           f"{name} heights: {gpu[name]} texture bytes, float32 {gpu['float32']}: 2 bytes a "
           "sample less")
+
+def layer_texels(tile):
+    """Texels of a texture holding zf in layers of equal tiles (vtkGeoMipMapTileLayout::Plan)."""
+    ny, nx = zf.shape
+    tx, ty = (-(-nx // tile), -(-ny // tile)) if tile else (1, 1)
+    return tx * ty * -(-nx // tx) * -(-ny // ty)
+
+
+# Heights read in place: the texture path's surface, from fewer bytes, where the renderer
+# runs on the CPU.
+on_cpu = "llvmpipe" in win.ReportCapabilities() or "softpipe" in win.ReportCapabilities()
+for name, z in (("float32", np.round(zf).astype(np.float32)), ("int16", zi), ("uint16", zu)):
+    img = refscene.image_from_heights(z)
+    for tile in (0, 64):
+        mt, at = ours(img, MaximumTileSize=tile)
+        texture = frame(at)
+        texture_depth, texture_bytes = refscene.depth(win), mt.GetGPUMemoryBytes()
+        ms, as_ = ours(img, MaximumTileSize=tile, ShareHeights=True)
+        shared = frame(as_)
+        same = np.array_equal(texture, shared) and np.array_equal(texture_depth, refscene.depth(win))
+        saved = texture_bytes - ms.GetGPUMemoryBytes()  # the same triangles: the same index bytes
+        per_sample = 4 if name == "float32" else 2
+        bands = "one band" if tile == 0 else f"{-(-zf.size // 4096)} bands"
+        texels = layer_texels(tile)
+        if on_cpu:
+            check(ms.GetHeightsShared() and same and saved == per_sample * texels,
+                  f"{name} heights read in place, {bands}: the texture path's picture and depth "
+                  f"bit for bit: {same}; {saved} bytes less (the texture's {texels} texels of "
+                  f"{per_sample} bytes)")
+        else:
+            check(not ms.GetHeightsShared() and same,
+                  f"{name} heights on a GPU with its own memory: a texture, as without ShareHeights")
+
+# Slopes computed per fragment from the heights (SlopeTexture off): the slope texture's
+# picture but for its half-float rounding (and, on one layer, its bilinear filtering), with
+# a nodata hole too (one-sided differences beside it), read in place or from the texture.
+hole = np.round(zf).astype(np.float32)
+hole[60:80, 100:140] = np.nan
+for name, z in (("no nodata", np.round(zf).astype(np.float32)), ("a nodata hole", hole)):
+    img = refscene.image_from_heights(z)
+    for tile, share in ((0, False), (64, False), (64, True)):
+        mt, at = ours(img, MaximumTileSize=tile, ShareHeights=share)
+        texture = frame(at)
+        texture_bytes = mt.GetGPUMemoryBytes()
+        mf, af = ours(img, MaximumTileSize=tile, ShareHeights=share, SlopeTexture=False)
+        per_fragment = frame(af)
+        drawn = refscene.covered(per_fragment, BG)
+        d = differing(texture, per_fragment, 8) / drawn.mean()  # of the terrain's pixels
+        saved = texture_bytes - mf.GetGPUMemoryBytes()
+        layers = "one layer" if tile == 0 else "5 x 3 layers"
+        where = "read in place" if mf.GetHeightsShared() else "from the texture"
+        # Layers: both interpolate the same three slopes on the triangle (only the half-float
+        # rounding differs); one layer: the texture's slopes are filtered bilinearly.
+        check(drawn.mean() > 0.1 and d < (0.01 if tile == 0 else 0.001) and saved == 4 * layer_texels(tile),
+              f"slopes per fragment, {name}, {layers}, heights {where}: {100 * d:.3f} % of the "
+              f"terrain's pixels differ by > 8 from the slope texture's; {saved} bytes less")
 
 # Colouring by a second point array through a lookup table, and by RGB colours.
 slope = np.hypot(*np.gradient(zf, 30.0)).astype(np.float32)

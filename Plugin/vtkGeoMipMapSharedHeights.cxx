@@ -1,0 +1,157 @@
+// VTK-HeaderTest-Exclude: vtkGeoMipMapSharedHeights.cxx
+#include "vtkGeoMipMapSharedHeights.h"
+
+#include "vtkDataArray.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+
+#ifndef GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD
+#define GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD 0x9160 // GL_AMD_pinned_memory
+#endif
+
+//------------------------------------------------------------------------------
+bool vtkGeoMipMapSharedHeights::Usable(vtkOpenGLRenderWindow*)
+{
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const bool onCPU = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
+  return onCPU && glewIsSupported("GL_AMD_pinned_memory") && glewIsSupported("GL_ARB_texture_buffer_object");
+}
+
+bool vtkGeoMipMapSharedHeights::SharesFormat(vtkDataArray* a, vtkGeoMipMapSampleTexture::Format f)
+{
+  if (a->GetNumberOfComponents() != 1)
+  {
+    return false;
+  }
+  switch (f)
+  {
+    case vtkGeoMipMapSampleTexture::Float32:
+      return a->GetDataType() == VTK_FLOAT;
+    case vtkGeoMipMapSampleTexture::Int16:
+    case vtkGeoMipMapSampleTexture::UInt16:
+      return true; // FormatFor picks these for 1-component 16-bit arrays only
+    default:
+      return false;
+  }
+}
+
+vtkGeoMipMapSharedHeights::vtkGeoMipMapSharedHeights() = default;
+vtkGeoMipMapSharedHeights::~vtkGeoMipMapSharedHeights() = default;
+
+bool vtkGeoMipMapSharedHeights::IsCurrent(
+  vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format, vtkIdType maxBandSamples) const
+{
+  return this->HasData() && this->Source == array && this->SourceTime == array->GetMTime() &&
+    this->Stored == format && this->MaxBandSamples == maxBandSamples;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGeoMipMapSharedHeights::Share(vtkOpenGLRenderWindow* win, vtkDataArray* array,
+  vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandSamples)
+{
+  this->Release(win);
+  const size_t texel = vtkGeoMipMapSampleTexture::BytesPerTexel(format);
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  // Bands of a power of two samples, so that the shader finds a sample's band by a shift.
+  const vtkIdType most = maxBandSamples > 0 ? std::min<vtkIdType>(maxBandSamples, maxTexels) : maxTexels;
+  int shift = 0;
+  while (shift < 30 && (vtkIdType(1) << (shift + 1)) <= most)
+  {
+    ++shift;
+  }
+  const vtkIdType bandSamples = vtkIdType(1) << shift;
+  const vtkIdType bands = (samples + bandSamples - 1) / bandSamples;
+  if (maxTexels < 1 || bands > kMaxBands || samples > VTK_INT_MAX)
+  {
+    std::ostringstream why;
+    why << samples << " samples need " << bands << " buffer textures of " << bandSamples
+        << " texels (at most " << kMaxBands << ")";
+    return why.str();
+  }
+  while (glGetError() != GL_NO_ERROR)
+  {
+    // Errors of earlier calls are not ours to report.
+  }
+  const GLenum internal = format == vtkGeoMipMapSampleTexture::Int16 ? GL_R16I
+    : format == vtkGeoMipMapSampleTexture::UInt16                    ? GL_R16UI
+                                                                     : GL_R32F;
+  const unsigned char* base = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+  GLenum err = GL_NO_ERROR;
+  for (vtkIdType k = 0; k < bands && err == GL_NO_ERROR; ++k)
+  {
+    Band b;
+    const vtkIdType first = k * bandSamples;
+    const vtkIdType count = std::min(bandSamples, samples - first);
+    glGenBuffers(1, &b.Buffer);
+    glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, b.Buffer);
+    // The array's memory becomes the buffer's storage (the driver does not copy it).
+    glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(count * texel),
+      base + first * texel, GL_STATIC_DRAW);
+    glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, 0);
+    glGenTextures(1, &b.Texture);
+    glBindTexture(GL_TEXTURE_BUFFER, b.Texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, internal, b.Buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    b.Unit = vtkSmartPointer<vtkTextureObject>::New();
+    b.Unit->SetContext(win);
+    b.Unit->AssignToExistingTexture(b.Texture, GL_TEXTURE_BUFFER);
+    this->Bands.push_back(b);
+    err = glGetError();
+  }
+  if (err != GL_NO_ERROR)
+  {
+    this->Release(win);
+    std::ostringstream why;
+    why << "OpenGL could not read the " << samples << " heights in place: error 0x" << std::hex << err;
+    return why.str();
+  }
+  this->BandShift = shift;
+  this->MaxBandSamples = maxBandSamples;
+  this->Source = array;
+  this->SourceTime = array->GetMTime();
+  this->Stored = format;
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+void vtkGeoMipMapSharedHeights::Activate(std::vector<int>& units)
+{
+  units.clear();
+  for (Band& b : this->Bands)
+  {
+    b.Unit->Activate();
+    units.push_back(b.Unit->GetTextureUnit());
+  }
+}
+
+void vtkGeoMipMapSharedHeights::Deactivate()
+{
+  for (Band& b : this->Bands)
+  {
+    b.Unit->Deactivate();
+  }
+}
+
+void vtkGeoMipMapSharedHeights::Release(vtkWindow* win)
+{
+  for (Band& b : this->Bands)
+  {
+    b.Unit->ReleaseGraphicsResources(win); // frees its unit; does not own the handle
+    glDeleteTextures(1, &b.Texture);
+    glDeleteBuffers(1, &b.Buffer);
+  }
+  this->Forget();
+}
+
+void vtkGeoMipMapSharedHeights::Forget()
+{
+  this->Bands.clear();
+  this->Source = nullptr;
+  this->SourceTime = 0;
+}

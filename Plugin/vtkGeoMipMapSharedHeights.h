@@ -1,0 +1,99 @@
+/**
+ * @file   vtkGeoMipMapSharedHeights.h
+ * @brief  The heights array read in place by a renderer that runs on the CPU.
+ *
+ * Mesa's llvmpipe keeps "GPU" textures in the process's own memory: a height texture is a
+ * second copy of the DEM, and making it costs the copy plus the first touch of every new
+ * page (about 3.9 s per GiB on the VM the benchmarks ran on: 4.6 s for the heights of a
+ * 16385^2 DEM). With GL_AMD_pinned_memory the driver can use the array's own memory as
+ * buffer storage instead: nothing is copied and nothing is allocated.
+ *
+ * The array is wrapped as buffer textures (samplerBuffer, texelFetch by sample index
+ * j * nx + i), in bands of 2^BandShift() samples because one buffer texture holds at most
+ * GL_MAX_TEXTURE_BUFFER_SIZE texels (2^27 on llvmpipe; a 16385^2 DEM takes 3 bands).
+ * Float heights are read as R32F, 16-bit integer heights as R16I / R16UI, as the texture
+ * path stores them, so the shaders see the same values. The array is held (reference
+ * counted) while it is shared; a change of it (its MTime) or another array shares again.
+ *
+ * On a GPU that has its own memory this would make every fetch cross the bus: Usable()
+ * answers only for renderers that run on the CPU.
+ * Not wrapped, not installed: private to geomipmap::Rendering.
+ */
+#ifndef vtkGeoMipMapSharedHeights_h
+#define vtkGeoMipMapSharedHeights_h
+
+#include "vtkGeoMipMapTextures.h" // For vtkGeoMipMapSampleTexture::Format
+#include "vtkSmartPointer.h"      // For vtkSmartPointer
+#include "vtkType.h"              // For vtkMTimeType
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+#include <vector> // For std::vector
+
+class vtkDataArray;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class vtkGeoMipMapSharedHeights
+{
+public:
+  /** Most bands a DEM may take (2^31 samples at 2^27 per band). */
+  static constexpr int kMaxBands = 16;
+
+  /**
+   * True when `win`'s OpenGL runs on the CPU (Mesa llvmpipe or softpipe) and offers
+   * GL_AMD_pinned_memory and buffer textures; the window's context must be current.
+   */
+  static bool Usable(vtkOpenGLRenderWindow* win);
+
+  /** True for the formats read in place: float, 16-bit integers, one component. */
+  static bool SharesFormat(vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format);
+
+  vtkGeoMipMapSharedHeights();
+  ~vtkGeoMipMapSharedHeights();
+
+  /**
+   * Shares `array` (`samples` values in `format`, SharesFormat) in bands of at most
+   * `maxBandSamples` samples (0: GL_MAX_TEXTURE_BUFFER_SIZE; rounded down to a power of
+   * two). Returns "" or why it could not (then nothing is held and the caller uploads a
+   * texture instead).
+   */
+  std::string Share(vtkOpenGLRenderWindow* win, vtkDataArray* array,
+    vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandSamples = 0);
+
+  bool IsCurrent(vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format,
+    vtkIdType maxBandSamples = 0) const;
+  bool HasData() const { return !this->Bands.empty(); }
+  int GetBands() const { return static_cast<int>(this->Bands.size()); }
+  int GetBandShift() const { return this->BandShift; }
+
+  /** Binds every band to a free texture unit; `units` gets them, in band order. */
+  void Activate(std::vector<int>& units);
+  void Deactivate();
+
+  /** Deletes the buffers and textures; `win`'s context must be current. */
+  void Release(vtkWindow* win);
+  /** Drops the handles without GL calls: their context is gone. */
+  void Forget();
+
+private:
+  vtkGeoMipMapSharedHeights(const vtkGeoMipMapSharedHeights&) = delete;
+  void operator=(const vtkGeoMipMapSharedHeights&) = delete;
+
+  struct Band
+  {
+    unsigned int Buffer = 0;
+    unsigned int Texture = 0;
+    vtkSmartPointer<vtkTextureObject> Unit; // texture-unit bookkeeping around Texture
+  };
+  std::vector<Band> Bands;
+  int BandShift = 0;
+  vtkSmartPointer<vtkDataArray> Source; // held: the driver reads its memory
+  vtkMTimeType SourceTime = 0;
+  vtkIdType MaxBandSamples = 0;
+  vtkGeoMipMapSampleTexture::Format Stored = vtkGeoMipMapSampleTexture::Float32;
+};
+
+#endif
+// VTK-HeaderTest-Exclude: vtkGeoMipMapSharedHeights.h
