@@ -1,6 +1,9 @@
 #include "Heightfield.h"
 
+#include "Parallel.h"
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -8,7 +11,12 @@
 namespace gmm
 {
 
-std::string validateHeightfield(const Heightfield& hf)
+namespace
+{
+constexpr std::size_t kScanChunk = std::size_t(1) << 20; // samples per chunk (4 MiB)
+}
+
+std::string validateHeightfield(const Heightfield& hf, int threads)
 {
   std::ostringstream why;
   if (hf.nx < 2 || hf.ny < 2)
@@ -46,31 +54,52 @@ std::string validateHeightfield(const Heightfield& hf)
         << " overflows";
     return why.str();
   }
+  // The first sample beyond the range, over chunks scanned in parallel: each chunk's first
+  // offender, the smallest index kept.
   const float* z = hf.heights();
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    const float h = z[k];
-    if (std::isfinite(h) && std::abs(h) > kMaxHeight)
+  std::atomic<std::size_t> first{ count };
+  parallelChunks(count, kScanChunk, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end && k < first.load(std::memory_order_relaxed); ++k)
     {
-      why << "height " << h << " at sample (" << k % hf.nx << ", " << k / hf.nx
-          << ") is beyond +-" << kMaxHeight << " m; is it an undeclared nodata value?";
-      return why.str();
+      const float h = z[k];
+      if (std::isfinite(h) && std::abs(h) > kMaxHeight)
+      {
+        std::size_t seen = first.load();
+        while (k < seen && !first.compare_exchange_weak(seen, k))
+        {
+        }
+        return;
+      }
     }
+  });
+  const std::size_t k = first.load();
+  if (k < count)
+  {
+    why << "height " << z[k] << " at sample (" << k % hf.nx << ", " << k / hf.nx
+        << ") is beyond +-" << kMaxHeight << " m; is it an undeclared nodata value?";
+    return why.str();
   }
   return std::string();
 }
 
-std::size_t infinitiesToNodata(Heightfield& hf)
+std::size_t infinitiesToNodata(Heightfield& hf, int threads)
 {
+  // Almost every DEM has none: find out on all cores, then replace on one.
+  const float* z = hf.heights();
+  std::atomic<bool> any{ false };
+  parallelChunks(hf.sampleCount(), kScanChunk, threads, [&](std::size_t begin, std::size_t end) {
+    if (!any.load(std::memory_order_relaxed) && std::any_of(z + begin, z + end, [](float h) { return std::isinf(h); }))
+    {
+      any = true;
+    }
+  });
+  if (!any)
+  {
+    return 0;
+  }
   if (hf.external)
   {
-    const float* begin = hf.external;
-    const float* end = begin + hf.sampleCount();
-    if (std::none_of(begin, end, [](float h) { return std::isinf(h); }))
-    {
-      return 0;
-    }
-    hf.z.assign(begin, end); // never write into storage we do not own
+    hf.z.assign(hf.external, hf.external + hf.sampleCount()); // never write into storage we do not own
     hf.external = nullptr;
     hf.owner.reset();
   }

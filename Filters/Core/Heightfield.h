@@ -47,12 +47,14 @@ constexpr double kMaxHeight = 1e38;
 // otherwise a sentence that says what is wrong (size below 2 x 2, more samples than 2^32 - 1
 // indices, height count that does not match the size (owned heights) or no heights at all
 // (external), zero or non-finite spacing, origin or datum, an extent that overflows, a
-// finite height beyond +-kMaxHeight). The size checks come
-// before anything touches the heights, so an absurd size allocates nothing.
-std::string validateHeightfield(const Heightfield& hf);
+// finite height beyond +-kMaxHeight, the first such sample named). The size checks come
+// before anything touches the heights, so an absurd size allocates nothing. The heights
+// are scanned by up to `threads` threads (0 = the hardware's).
+std::string validateHeightfield(const Heightfield& hf, int threads = 1);
 
 // Replaces +-Inf by NaN (nodata) and returns how many samples were replaced. External
-// heights are never written: when they hold an infinity they are first copied into z.
-std::size_t infinitiesToNodata(Heightfield& hf);
+// heights are never written: when they hold an infinity they are first copied into z. The
+// search for one is spread over up to `threads` threads (0 = the hardware's).
+std::size_t infinitiesToNodata(Heightfield& hf, int threads = 1);
 
 } // namespace gmm

@@ -1,5 +1,7 @@
 #include "Quadtree.h"
 
+#include "Parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -140,7 +142,7 @@ std::vector<int> splitBands(int quads, int maxQuads)
   return starts;
 }
 
-Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads)
+Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
 {
   Quadtree qt;
   maxBlockQuads = std::max(kMinBlockQuads, maxBlockQuads);
@@ -150,17 +152,20 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads)
   qt.blockRows = static_cast<int>(qt.rowStart.size()) - 1;
   qt.blockBox.resize(qt.blockCount());
   qt.blockHasNodata.resize(qt.blockCount());
-  for (int r = 0; r < qt.blockRows; ++r)
-  {
-    for (int c = 0; c < qt.blockCols; ++c)
+  // Rows of blocks in parallel: each writes its own blocks' entries.
+  parallelChunks(static_cast<std::size_t>(qt.blockRows), 1, threads, [&](std::size_t first, std::size_t last) {
+    for (int r = static_cast<int>(first); r < static_cast<int>(last); ++r)
     {
-      bool nodata = false;
-      const int b = qt.blockIndex(c, r);
-      qt.blockBox[b] =
-        sampleBox(hf, qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1], nodata);
-      qt.blockHasNodata[b] = nodata ? 1 : 0;
+      for (int c = 0; c < qt.blockCols; ++c)
+      {
+        bool nodata = false;
+        const int b = qt.blockIndex(c, r);
+        qt.blockBox[b] =
+          sampleBox(hf, qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1], nodata);
+        qt.blockHasNodata[b] = nodata ? 1 : 0;
+      }
     }
-  }
+  });
   qt.nodes.reserve(2 * static_cast<std::size_t>(qt.blockCount()));
   qt.nodes.resize(1);
   buildNode(qt, 0, 0, qt.blockCols, 0, qt.blockRows);

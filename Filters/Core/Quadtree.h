@@ -92,7 +92,8 @@ std::vector<int> splitBands(int quads, int maxQuads);
 
 // Builds the quadtree. The heightfield must be valid and maxBlockQuads pass
 // validateBlockSize (a smaller value is raised to kMinBlockQuads, so no caller can build
-// an unstitchable tree).
-Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads);
+// an unstitchable tree). The blocks' boxes are scanned by up to `threads` threads (0 = the
+// hardware's).
+Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads = 1);
 
 } // namespace gmm

@@ -1,6 +1,7 @@
 #include "TableCache.h"
 
 #include "Levels.h"
+#include "Parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <thread>
 #include <vector>
 
 namespace gmm
@@ -120,25 +120,10 @@ uint64_t hashHeights(const Heightfield& hf, int threads)
   constexpr std::size_t kChunk = std::size_t(1) << 20; // samples per chunk (4 MiB)
   const std::size_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<uint64_t> chunkHash(chunks, 0);
-  unsigned workers = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(std::max<std::size_t>(chunks, 1))));
-  auto work = [&](unsigned first) {
-    for (std::size_t c = first; c < chunks; c += workers)
-    {
-      const std::size_t begin = c * kChunk, n = std::min(kChunk, count - begin);
-      chunkHash[c] = hashBytes(reinterpret_cast<const unsigned char*>(z + begin), n * sizeof(float), c);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned w = 1; w < workers; ++w)
-  {
-    pool.emplace_back(work, w);
-  }
-  work(0);
-  for (std::thread& t : pool)
-  {
-    t.join();
-  }
+  parallelChunks(count, kChunk, threads, [&](std::size_t begin, std::size_t end) {
+    const std::size_t c = begin / kChunk;
+    chunkHash[c] = hashBytes(reinterpret_cast<const unsigned char*>(z + begin), (end - begin) * sizeof(float), c);
+  });
   uint64_t h = combine(static_cast<uint64_t>(hf.nx), static_cast<uint64_t>(hf.ny));
   for (uint64_t c : chunkHash)
   {

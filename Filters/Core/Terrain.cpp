@@ -18,7 +18,7 @@ std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
   TableCacheReport& r = report ? *report : unused;
   r = TableCacheReport();
   out.reset();
-  std::string err = validateHeightfield(hf);
+  std::string err = validateHeightfield(hf, threads);
   if (err.empty())
   {
     err = validateBlockSize(maxBlockQuads);
@@ -27,11 +27,11 @@ std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
   {
     return err;
   }
-  infinitiesToNodata(hf);
+  infinitiesToNodata(hf, threads);
   auto t = std::make_shared<Terrain>();
   t->hf = std::move(hf);
   t->maxBlockQuads = maxBlockQuads;
-  t->qt = buildQuadtree(t->hf, maxBlockQuads);
+  t->qt = buildQuadtree(t->hf, maxBlockQuads, threads);
   r.used = !cache.directory.empty() && t->hf.sampleCount() >= cache.minSamples;
   TableCacheKey key;
   if (r.used)

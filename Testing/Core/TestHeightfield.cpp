@@ -3,11 +3,14 @@
 #include "CoreTestUtil.h"
 #include "Engine.h"
 #include "Heightfield.h"
+#include "Quadtree.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -160,5 +163,59 @@ TEST(Heightfield, EngineTreatsInfinityAsNodata)
     }
     for (uint32_t k : e.indices())
       ASSERT_TRUE(std::isfinite(e.heightfield().z[k]));
+  }
+}
+
+// The scans of the samples run on several threads in chunks of 2^20 samples: whatever the
+// thread count, the message names the first offending sample, an infinity in any chunk is
+// found (and only there), and the quadtree's boxes are the one-thread boxes.
+TEST(Heightfield, ParallelScansAgreeWithOneThread)
+{
+  const int nx = 1500, ny = 2100; // 3.15 M samples: 4 chunks
+  gmm::Heightfield hf = flat(nx, ny);
+  for (std::size_t k = 0; k < hf.z.size(); ++k)
+    hf.z[k] = static_cast<float>((k * 2654435761u) % 1000) * 0.5f;
+  hf.z[3 * nx + 5] = std::numeric_limits<float>::quiet_NaN();
+  const std::string clean = gmm::validateHeightfield(hf, 1);
+  EXPECT_EQ(clean, "");
+  for (int threads : { 0, 2, 3 })
+    EXPECT_EQ(gmm::validateHeightfield(hf, threads), clean) << threads << " threads";
+
+  // Two offenders in different chunks; the later one is found by another thread first
+  // unless the smallest index is kept.
+  gmm::Heightfield bad = hf;
+  bad.z[2900000] = 3e38f;
+  bad.z[1200000] = -2e38f;
+  const std::string first = gmm::validateHeightfield(bad, 1);
+  EXPECT_NE(first.find("sample (" + std::to_string(1200000 % nx) + ", " + std::to_string(1200000 / nx) + ")"),
+    std::string::npos) << first;
+  for (int threads : { 0, 2, 3, 4 })
+    EXPECT_EQ(gmm::validateHeightfield(bad, threads), first) << threads << " threads";
+
+  // An infinity only in the last chunk, heights held externally: copied, then replaced.
+  std::vector<float> external = hf.z;
+  external[3100000] = std::numeric_limits<float>::infinity();
+  gmm::Heightfield ext = hf;
+  ext.z.clear();
+  ext.external = external.data();
+  EXPECT_EQ(gmm::infinitiesToNodata(ext, 2), 1u);
+  EXPECT_EQ(ext.external, nullptr);
+  EXPECT_TRUE(std::isnan(ext.z[3100000]));
+  EXPECT_TRUE(std::isinf(external[3100000])) << "external heights must never be written";
+  gmm::Heightfield none = hf;
+  EXPECT_EQ(gmm::infinitiesToNodata(none, 0), 0u);
+
+  const gmm::Quadtree one = gmm::buildQuadtree(hf, 32, 1);
+  for (int threads : { 0, 2, 3 })
+  {
+    const gmm::Quadtree many = gmm::buildQuadtree(hf, 32, threads);
+    ASSERT_EQ(many.blockBox.size(), one.blockBox.size());
+    for (std::size_t b = 0; b < one.blockBox.size(); ++b)
+    {
+      ASSERT_EQ(many.blockBox[b].lo, one.blockBox[b].lo) << "block " << b;
+      ASSERT_EQ(many.blockBox[b].hi, one.blockBox[b].hi) << "block " << b;
+    }
+    EXPECT_EQ(many.blockHasNodata, one.blockHasNodata);
+    EXPECT_EQ(many.nodes.size(), one.nodes.size());
   }
 }

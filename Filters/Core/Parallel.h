@@ -1,0 +1,54 @@
+// Spreading a loop over cores: the engine's one way to do it for scans of the samples.
+//
+// Work is cut into chunks that threads take from a shared counter, so a core that runs
+// slower (or is busy elsewhere) takes fewer of them instead of holding up the others, as a
+// fixed share would (on the benchmark VM one core ran 1.6x slower than the other).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace gmm
+{
+
+// Threads for `tasks` pieces of work: `threads` (0 = the hardware's), at most `tasks`, at
+// least 1.
+inline unsigned workerCount(int threads, std::size_t tasks)
+{
+  const unsigned want = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(std::max(want, 1u), tasks)));
+}
+
+// Calls fn(begin, end) for consecutive ranges of at most `chunk` items covering [0, count),
+// on up to `threads` threads (0 = the hardware's; the calling thread is one of them). fn must
+// be safe to run concurrently on disjoint ranges; ranges are taken in increasing order.
+template <class Fn>
+void parallelChunks(std::size_t count, std::size_t chunk, int threads, Fn&& fn)
+{
+  chunk = std::max<std::size_t>(chunk, 1);
+  const std::size_t chunks = (count + chunk - 1) / chunk;
+  std::atomic<std::size_t> next{ 0 };
+  auto work = [&]() {
+    for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1))
+    {
+      const std::size_t begin = c * chunk;
+      fn(begin, std::min(count, begin + chunk));
+    }
+  };
+  const unsigned workers = workerCount(threads, chunks);
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w)
+  {
+    pool.emplace_back(work);
+  }
+  work();
+  for (std::thread& t : pool)
+  {
+    t.join();
+  }
+}
+
+} // namespace gmm
