@@ -1,10 +1,10 @@
 #include "SyntheticTerrain.h"
 
+#include "Parallel.h"
+
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <vector>
 
 namespace gmm
@@ -110,21 +110,6 @@ Octave makeOctave(uint32_t seed, int index, double wavelength)
   return o;
 }
 
-template <class F>
-void runThreads(int n, F&& f)
-{
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n; ++t)
-  {
-    pool.emplace_back(f);
-  }
-  f();
-  for (std::thread& t : pool)
-  {
-    t.join();
-  }
-}
-
 } // namespace
 
 Heightfield makeSyntheticTerrain(
@@ -165,13 +150,12 @@ bool fillSyntheticTerrain(
     ridged.push_back(makeOctave(seed, 100 + k, w));
   }
 
-  const int nThreads = std::max(1,
-    std::min(threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency()), ny));
+  // Rows in chunks over the cores (Parallel.h); each row depends on nothing but its index.
+  constexpr std::size_t kRowsPerChunk = 8;
   std::vector<float> rowMin(ny), rowMax(ny);
-  std::atomic<int> nextRow{ 0 };
-  auto worker = [&]() {
+  parallelChunks(static_cast<std::size_t>(ny), kRowsPerChunk, threads, [&](std::size_t first, std::size_t last) {
     std::vector<double> noise(nx), baseSum(nx), ridgeSum(nx), weight(nx);
-    for (int j = nextRow.fetch_add(1); j < ny; j = nextRow.fetch_add(1))
+    for (int j = static_cast<int>(first); j < static_cast<int>(last); ++j)
     {
       const double y = j * spacing;
       std::fill(baseSum.begin(), baseSum.end(), 0.0);
@@ -216,17 +200,15 @@ bool fillSyntheticTerrain(
       rowMin[j] = lo;
       rowMax[j] = hi;
     }
-  };
-  runThreads(nThreads, worker);
+  });
 
   // Normalise to [0, 1] over the whole DEM (deterministic: min/max do not depend on order),
   // then a power curve widens valley floors and sharpens summits.
   const float lo = *std::min_element(rowMin.begin(), rowMin.end());
   const float hi = *std::max_element(rowMax.begin(), rowMax.end());
   const double scale = hi > lo ? 1.0 / (static_cast<double>(hi) - lo) : 0.0;
-  nextRow = 0;
-  runThreads(nThreads, [&]() {
-    for (int j = nextRow.fetch_add(1); j < ny; j = nextRow.fetch_add(1))
+  parallelChunks(static_cast<std::size_t>(ny), kRowsPerChunk, threads, [&](std::size_t first, std::size_t last) {
+    for (int j = static_cast<int>(first); j < static_cast<int>(last); ++j)
     {
       float* row = out + static_cast<std::size_t>(j) * nx;
       for (int i = 0; i < nx; ++i)
