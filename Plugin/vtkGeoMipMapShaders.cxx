@@ -95,23 +95,25 @@ const char* const kQuad =
   "  return t;\n"
   "}\n";
 
-// Normals from the slope texture (central differences as vtkGeoMipMapConversion::
-// SampleNormal computes them, made once at upload): the slopes of the triangle's three
-// samples are interpolated with its weights, then scaled and normalised once. (The
-// full-resolution mesh interpolates unit normals instead; the two differ by a fraction of
-// a degree where the slopes vary fast within one quad.)
-const char* const kNormal =
-  "uniform highp sampler2DArray gmmSlopes;\n"
-  "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n"
+// Normals on the level-0 triangle under the fragment: the slopes of its three samples
+// (gmmSlope, from one of the two sources below) are interpolated with its weights, then
+// scaled and normalised once. (The full-resolution mesh interpolates unit normals instead;
+// the two differ by a fraction of a degree where the slopes vary fast within one quad.)
+const char* const kNormalOnTriangle =
   "vec3 gmmNormalMC(GmmTri t)\n"
   "{\n"
   "  vec2 g = t.w.x * gmmSlope(t.c) + t.w.y * gmmSlope(t.c + t.d) + t.w.z * gmmSlope(t.c + ivec2(1));\n"
   "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
-// Heights read in place and no slope texture: the slopes of the triangle's three samples by
-// central differences from the heights, by vtkGeoMipMapConversion::SampleNormal's rule
-// (one-sided next to the border or nodata, 0 where neither neighbour is valid).
-const char* const kNormalFromHeights =
+// Slopes from the slope texture (central differences as vtkGeoMipMapConversion::
+// SampleNormal computes them, made once at upload).
+const char* const kSlopeFromTexture =
+  "uniform highp sampler2DArray gmmSlopes;\n"
+  "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n";
+// Slopes computed per fragment from the heights (SlopeTexture off: no slope texture), by
+// the same rule: central differences, one-sided next to the border or nodata, 0 where
+// neither neighbour is valid.
+const char* const kSlopeFromHeights =
   "float gmmSlope1(ivec2 p, ivec2 step, bool hasA, bool hasB, float hc, float spacing)\n"
   "{\n"
   "  float ha = hasA ? gmmHeight(p - step) : 0.0, hb = hasB ? gmmHeight(p + step) : 0.0;\n"
@@ -126,11 +128,6 @@ const char* const kNormalFromHeights =
   "  float hc = gmmHeight(p);\n"
   "  return vec2(gmmSlope1(p, ivec2(1, 0), p.x > 0, p.x + 1 < gmmGridSize.x, hc, gmmSpacing.x),\n"
   "    gmmSlope1(p, ivec2(0, 1), p.y > 0, p.y + 1 < gmmGridSize.y, hc, gmmSpacing.y));\n"
-  "}\n"
-  "vec3 gmmNormalMC(GmmTri t)\n"
-  "{\n"
-  "  vec2 g = t.w.x * gmmSlope(t.c) + t.w.y * gmmSlope(t.c + t.d) + t.w.z * gmmSlope(t.c + ivec2(1));\n"
-  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
 // One layer: the slopes bilinearly filtered at the fragment (one fetch; the exact
 // triangle interpolation above takes three, and differs from it by a fraction of a degree).
@@ -379,10 +376,14 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   const bool colored = o.Color != Options::PropertyColor;
   vtkShaderProgram::Substitute(fs, "//GMM::Dec",
     FetchFunctions(o) + kQuad +
-      (lit ? (o.SlopesFromHeights ? kNormalFromHeights : o.SingleLayer ? kNormalBilinear : kNormal) : "") +
+      (!lit ? std::string()
+            : o.SlopesFromHeights ? std::string(kSlopeFromHeights) + kNormalOnTriangle
+            : o.SingleLayer       ? std::string(kNormalBilinear)
+                                  : std::string(kSlopeFromTexture) + kNormalOnTriangle) +
       ColorFunctions(o) + (o.Drape ? kDrape : ""));
   // The level-0 triangle under the fragment, where full-resolution values are interpolated
-  // per fragment (colouring arrays; normals of DEMs in several layers).
+  // per fragment (colouring arrays; normals of DEMs in several layers or without a slope
+  // texture).
   const bool triangle =
     (colored && o.Color != Options::MapHeights) || (lit && (!o.SingleLayer || o.SlopesFromHeights));
   std::string color = triangle ? "  GmmTri gmmT = gmmTriangle(gmmGridVSOutput);\n"
