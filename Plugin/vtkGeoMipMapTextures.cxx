@@ -12,13 +12,13 @@
 
 #include "HalfFloat.h"   // gmm::halfOf
 #include "Heightfield.h" // gmm::kMaxHeight
+#include "Parallel.h"    // gmm::parallelChunks
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
-#include <thread>
 #include <vector>
 
 namespace
@@ -211,15 +211,14 @@ std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win, 
       return (static_cast<double>(z[k]) - z[a]) / step;
     return 0.0;
   };
-  const unsigned workers = std::max(1u, std::thread::hardware_concurrency());
   std::string err = this->UploadTiles(win, Slopes16F, layout,
     [&](int i0, int j0, int w, int h, const void*& pixels, int& rowLength,
       std::vector<unsigned char>& scratch) {
       scratch.resize(static_cast<size_t>(w) * h * 2 * sizeof(uint16_t));
       uint16_t* out = reinterpret_cast<uint16_t*>(scratch.data());
       // Halves made here, on all cores: Mesa converts a GL_FLOAT upload to RG16F texel by
-      // texel on one thread. The band's rows are split over the cores (a band is a few MB:
-      // each share is worth a thread).
+      // texel on one thread. The band's rows go to the cores in chunks (a band is a few MB:
+      // each chunk is worth a thread's while).
       auto rows = [&](int first, int last) {
         for (int j = first; j < last; ++j)
         {
@@ -232,17 +231,9 @@ std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win, 
           }
         }
       };
-      const int parts = static_cast<int>(std::min<unsigned>(workers, static_cast<unsigned>(h)));
-      std::vector<std::thread> pool;
-      for (int p = 1; p < parts; ++p)
-      {
-        pool.emplace_back(rows, j0 + h * p / parts, j0 + h * (p + 1) / parts);
-      }
-      rows(j0, j0 + h / parts);
-      for (std::thread& t : pool)
-      {
-        t.join();
-      }
+      constexpr std::size_t kRowsPerChunk = 64;
+      gmm::parallelChunks(static_cast<std::size_t>(h), kRowsPerChunk, 0,
+        [&](std::size_t first, std::size_t last) { rows(j0 + static_cast<int>(first), j0 + static_cast<int>(last)); });
       pixels = scratch.data();
       rowLength = w;
     });

@@ -1,6 +1,7 @@
 #include "ErrorTable.h"
 
 #include "Levels.h"
+#include "Parallel.h"
 #include "RasterError.h"
 #include "Tessellate.h"
 
@@ -192,8 +193,7 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   // Work items: every block, then every quadtree node (its merged fan).
   const std::size_t items = blocks + nodes;
 
-  unsigned workers = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  workers = std::max(1u, std::min<unsigned>(workers, static_cast<unsigned>(items)));
+  const unsigned workers = workerCount(threads, items);
   // Items are independent. Workers take the next ones from a shared counter rather than a
   // fixed share, so that a worker on a slower or busier core does fewer: with a fixed
   // interleaving the build took as long as its slowest half, and on this project's 2-core

@@ -1,4 +1,7 @@
-// Spreading a loop over cores: the engine's one way to do it for scans of the samples.
+// Spreading a loop over cores: parallelChunks for the scans of the samples (validation,
+// block boxes, the heights' hash, synthetic terrain, the mapper's slopes), workerCount for
+// every thread count (the error table's build, whose caller reports progress instead of
+// working, keeps its own two-phase loop).
 //
 // Work is cut into chunks that threads take from a shared counter, so a core that runs
 // slower (or is busy elsewhere) takes fewer of them instead of holding up the others, as a
