@@ -341,10 +341,13 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   // Each drawn block's level as an index into its chain (MorphRamp.h), for the rise limit
   // and its history.
   std::vector<int>& chainAt = cache.chainAt;
-  chainAt.resize(drawn.size());
-  for (std::size_t k = 0; k < drawn.size() && limited; ++k)
+  chainAt.assign(drawn.size(), 0);
+  if (limited)
   {
-    chainAt[k] = chainIndex(qt, drawn[k], levels[drawn[k]]);
+    for (std::size_t k = 0; k < drawn.size(); ++k)
+    {
+      chainAt[k] = chainIndex(qt, drawn[k], levels[drawn[k]]);
+    }
   }
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
