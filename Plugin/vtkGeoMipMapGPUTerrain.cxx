@@ -43,7 +43,7 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
   // otherwise, or when sharing fails.
   const bool share = in.ShareHeights && vtkGeoMipMapSharedHeights::SharesFormat(in.Heights, heightFormat) &&
     vtkGeoMipMapSharedHeights::Usable(win);
-  // MaximumTileSize bounds the bands as it bounds the layers (tests use it for many bands).
+  // MaximumTileSize bounds a band's texels as it bounds a layer's (tests use it for many bands).
   const vtkIdType maxBand = in.MaximumTileSize > 0 ? vtkIdType(in.MaximumTileSize) * in.MaximumTileSize : 0;
   if (r.HeightsError.empty() && share && !this->Shared.IsCurrent(in.Heights, heightFormat, maxBand))
   {
@@ -89,6 +89,7 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
   }
   this->Shading.SingleLayer = this->Layout.Layers() == 1;
   this->Shading.HeightBands = this->Shared.GetBands();
+  this->Shading.HeightsPerTexel = this->Shared.GetSamplesPerTexel();
   this->Shading.HeightFormat = heightFormat == vtkGeoMipMapSampleTexture::Int16 ? O::Int16Heights
     : heightFormat == vtkGeoMipMapSampleTexture::UInt16                         ? O::UInt16Heights
                                                                                  : O::FloatHeights;
@@ -219,6 +220,11 @@ void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightf
     seti(("gmmHeightBand" + std::to_string(k)).c_str(), this->BandUnits[k]);
   }
   seti("gmmBandShift", this->Shared.GetBandShift());
+  if (p->IsUniformUsed("gmmTailStart"))
+  {
+    p->SetUniformi("gmmTailStart", static_cast<int>(this->Shared.GetTailStart()));
+    p->SetUniform1fv("gmmTail", 3, this->Shared.GetTail());
+  }
   seti("gmmSlopes", this->SlopesUnit);
   seti("gmmColors", this->ColorsUnit);
   seti("gmmScalars", this->ColorsUnit);

@@ -20,13 +20,16 @@ std::string SamplerFor(vtkGeoMipMapShaders::Options::Heights h, const char* kind
   }
 }
 
-// Heights read in place (vtkGeoMipMapSharedHeights.h): sample j * nx + i of bands of
-// 2^gmmBandShift samples, one buffer texture each. The band is picked by a chain of
-// branches: indexing an array of samplers by a value that differs between vertices is
-// undefined in GLSL 4.5.
+// Heights read in place (vtkGeoMipMapSharedHeights.h): sample k = j * nx + i of bands of
+// 2^gmmBandShift samples, one buffer texture each, one sample a texel or four (component
+// k % 4 of texel k / 4; then the last samples that fill no texel are uniforms). With
+// several bands the band is picked by a chain of branches: indexing an array of samplers by
+// a value that differs between vertices is undefined in GLSL 4.5.
 std::string SharedHeightFetch(const vtkGeoMipMapShaders::Options& o)
 {
+  const bool packed = o.HeightsPerTexel > 1;
   std::string s = "uniform int gmmBandShift;\n";
+  s += packed ? "uniform int gmmTailStart;\nuniform float gmmTail[3];\n" : "";
   for (int k = 0; k < o.HeightBands; ++k)
   {
     s += "uniform highp " + SamplerFor(o.HeightFormat, "Buffer") + " gmmHeightBand" + std::to_string(k) + ";\n";
@@ -34,16 +37,25 @@ std::string SharedHeightFetch(const vtkGeoMipMapShaders::Options& o)
   s += "float gmmHeight(ivec2 ij)\n"
        "{\n"
        "  int k = ij.y * gmmGridSize.x + ij.x;\n";
+  s += packed ? "  int t = min(k, gmmTailStart - 1);\n" : "  int t = k;\n";
+  s += "  float h;\n";
+  const std::string texel = packed ? "t >> 2)[t & 3]" : "t).r";
   if (o.HeightBands == 1)
   {
-    return s + "  return float(texelFetch(gmmHeightBand0, k).r);\n}\n";
+    s += "  h = float(texelFetch(gmmHeightBand0, " + texel + ");\n";
   }
-  s += "  int band = k >> gmmBandShift, t = k - (band << gmmBandShift);\n";
-  for (int k = 0; k + 1 < o.HeightBands; ++k)
+  else
   {
-    s += "  if (band == " + std::to_string(k) + ") { return float(texelFetch(gmmHeightBand" + std::to_string(k) + ", t).r); }\n";
+    s += "  int band = t >> gmmBandShift;\n"
+         "  t -= band << gmmBandShift;\n";
+    for (int k = 0; k < o.HeightBands; ++k)
+    {
+      const std::string fetch = "h = float(texelFetch(gmmHeightBand" + std::to_string(k) + ", " + texel + ");";
+      s += k + 1 < o.HeightBands ? "  " + std::string(k ? "else " : "") + "if (band == " + std::to_string(k) + ") { " + fetch + " }\n"
+                                 : "  else { " + fetch + " }\n";
+    }
   }
-  return s + "  return float(texelFetch(gmmHeightBand" + std::to_string(o.HeightBands - 1) + ", t).r);\n}\n";
+  return s + (packed ? "  return k < gmmTailStart ? h : gmmTail[clamp(k - gmmTailStart, 0, 2)];\n}\n" : "  return h;\n}\n");
 }
 
 // Sample (i, j) of a tiled array texture (vtkGeoMipMapTextures.h): layer, then texel. One
@@ -96,38 +108,65 @@ const char* const kQuad =
   "}\n";
 
 // Normals on the level-0 triangle under the fragment: the slopes of its three samples
-// (gmmSlope, from one of the two sources below) are interpolated with its weights, then
-// scaled and normalised once. (The full-resolution mesh interpolates unit normals instead;
-// the two differ by a fraction of a degree where the slopes vary fast within one quad.)
+// (gmmTriangleSlopes, from one of the two sources below) are interpolated with its weights,
+// then scaled and normalised once. (The full-resolution mesh interpolates unit normals
+// instead; the two differ by a fraction of a degree where the slopes vary fast within one
+// quad.)
 const char* const kNormalOnTriangle =
   "vec3 gmmNormalMC(GmmTri t)\n"
   "{\n"
-  "  vec2 g = t.w.x * gmmSlope(t.c) + t.w.y * gmmSlope(t.c + t.d) + t.w.z * gmmSlope(t.c + ivec2(1));\n"
+  "  vec2 s0, s1, s2;\n"
+  "  gmmTriangleSlopes(t, s0, s1, s2);\n"
+  "  vec2 g = t.w.x * s0 + t.w.y * s1 + t.w.z * s2;\n"
   "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
 // Slopes from the slope texture (central differences as vtkGeoMipMapConversion::
 // SampleNormal computes them, made once at upload).
 const char* const kSlopeFromTexture =
   "uniform highp sampler2DArray gmmSlopes;\n"
-  "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n";
+  "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n"
+  "void gmmTriangleSlopes(GmmTri t, out vec2 s0, out vec2 s1, out vec2 s2)\n"
+  "{\n"
+  "  s0 = gmmSlope(t.c);\n"
+  "  s1 = gmmSlope(t.c + t.d);\n"
+  "  s2 = gmmSlope(t.c + ivec2(1));\n"
+  "}\n";
 // Slopes computed per fragment from the heights (SlopeTexture off: no slope texture), by
 // the same rule: central differences, one-sided next to the border or nodata, 0 where
-// neither neighbour is valid.
+// neither neighbour is valid. The three vertices' 15 neighbours are 10 distinct samples:
+// the quad's corners, two beyond each of c and c + (1, 1), and two beyond c + d (which two
+// depends on d). Fetched without branches (llvmpipe runs both sides of a branch), at
+// positions clamped into the grid; a clamped one is never used (hasA / hasB).
 const char* const kSlopeFromHeights =
-  "float gmmSlope1(ivec2 p, ivec2 step, bool hasA, bool hasB, float hc, float spacing)\n"
+  "float gmmSlope1(float ha, float hc, float hb, bool hasA, bool hasB, float spacing)\n"
   "{\n"
-  "  float ha = hasA ? gmmHeight(p - step) : 0.0, hb = hasB ? gmmHeight(p + step) : 0.0;\n"
   "  bool okA = hasA && gmmValid(ha), okB = hasB && gmmValid(hb), okC = gmmValid(hc);\n"
   "  if (okA && okB) { return (hb - ha) / (2.0 * spacing); }\n"
   "  if (okB && okC) { return (hb - hc) / spacing; }\n"
   "  if (okA && okC) { return (hc - ha) / spacing; }\n"
   "  return 0.0;\n"
   "}\n"
-  "vec2 gmmSlope(ivec2 p)\n"
+  "// The slopes at p from its height and its west, east, south and north neighbours'.\n"
+  "vec2 gmmSlope(ivec2 p, float hc, float hw, float he, float hs, float hn)\n"
   "{\n"
-  "  float hc = gmmHeight(p);\n"
-  "  return vec2(gmmSlope1(p, ivec2(1, 0), p.x > 0, p.x + 1 < gmmGridSize.x, hc, gmmSpacing.x),\n"
-  "    gmmSlope1(p, ivec2(0, 1), p.y > 0, p.y + 1 < gmmGridSize.y, hc, gmmSpacing.y));\n"
+  "  return vec2(gmmSlope1(hw, hc, he, p.x > 0, p.x + 1 < gmmGridSize.x, gmmSpacing.x),\n"
+  "    gmmSlope1(hs, hc, hn, p.y > 0, p.y + 1 < gmmGridSize.y, gmmSpacing.y));\n"
+  "}\n"
+  "float gmmHeightIn(ivec2 ij) { return gmmHeight(clamp(ij, ivec2(0), gmmGridSize - 1)); }\n"
+  "void gmmTriangleSlopes(GmmTri t, out vec2 s0, out vec2 s1, out vec2 s2)\n"
+  "{\n"
+  "  ivec2 c = t.c;\n"
+  "  bool lower = t.d.x == 1; // d = (1, 0)\n"
+  "  float h00 = gmmHeightIn(c), h10 = gmmHeightIn(c + ivec2(1, 0));\n"
+  "  float h01 = gmmHeightIn(c + ivec2(0, 1)), h11 = gmmHeightIn(c + ivec2(1, 1));\n"
+  "  float hw = gmmHeightIn(c - ivec2(1, 0)), hs = gmmHeightIn(c - ivec2(0, 1));\n"
+  "  float he = gmmHeightIn(c + ivec2(2, 1)), hn = gmmHeightIn(c + ivec2(1, 2));\n"
+  "  // c + d's two neighbours outside the quad: east and south for (1, 0), west and north\n"
+  "  float hx = gmmHeightIn(c + (lower ? ivec2(2, 0) : ivec2(-1, 1)));\n"
+  "  float hy = gmmHeightIn(c + (lower ? ivec2(1, -1) : ivec2(0, 2)));\n"
+  "  s0 = gmmSlope(c, h00, hw, h10, hs, h01);\n"
+  "  s1 = lower ? gmmSlope(c + t.d, h10, h00, hx, hy, h11) : gmmSlope(c + t.d, h01, hx, h11, h00, hy);\n"
+  "  s2 = gmmSlope(c + ivec2(1), h11, h01, he, h10, hn);\n"
   "}\n";
 // One layer: the slopes bilinearly filtered at the fragment (one fetch; the exact
 // triangle interpolation above takes three, and differs from it by a fraction of a degree).
@@ -285,7 +324,8 @@ std::string Options::Key() const
   return std::to_string(this->HeightFormat) + "/" + std::to_string(this->Color) + "/" +
     (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n") +
     (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-") + (this->Morph ? "m" : "-") + "b" +
-    std::to_string(this->HeightBands) + (this->SlopesFromHeights ? "s" : "-");
+    std::to_string(this->HeightBands) + "x" + std::to_string(this->HeightsPerTexel) +
+    (this->SlopesFromHeights ? "s" : "-");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)

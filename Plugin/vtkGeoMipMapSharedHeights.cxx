@@ -44,55 +44,67 @@ vtkGeoMipMapSharedHeights::vtkGeoMipMapSharedHeights() = default;
 vtkGeoMipMapSharedHeights::~vtkGeoMipMapSharedHeights() = default;
 
 bool vtkGeoMipMapSharedHeights::IsCurrent(
-  vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format, vtkIdType maxBandSamples) const
+  vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format, vtkIdType maxBandTexels) const
 {
   return this->HasData() && this->Source == array && this->SourceTime == array->GetMTime() &&
-    this->Stored == format && this->MaxBandSamples == maxBandSamples;
+    this->Stored == format && this->MaxBandTexels == maxBandTexels;
 }
 
 //------------------------------------------------------------------------------
 std::string vtkGeoMipMapSharedHeights::Share(vtkOpenGLRenderWindow* win, vtkDataArray* array,
-  vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandSamples)
+  vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandTexels)
 {
   this->Release(win);
-  const size_t texel = vtkGeoMipMapSampleTexture::BytesPerTexel(format);
+  const size_t sampleBytes = vtkGeoMipMapSampleTexture::BytesPerTexel(format);
   GLint maxTexels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  // One sample a texel while one band holds them all; else four, so that a band holds four
+  // times as many and fewer branches pick them (every branch costs on llvmpipe).
+  const vtkIdType texels = maxBandTexels > 0 ? std::min<vtkIdType>(maxBandTexels, maxTexels) : maxTexels;
+  const int perTexel = samples <= texels ? 1 : kMaxPerTexel;
   // Bands of a power of two samples, so that the shader finds a sample's band by a shift.
-  const vtkIdType most = maxBandSamples > 0 ? std::min<vtkIdType>(maxBandSamples, maxTexels) : maxTexels;
-  int shift = 0;
-  while (shift < 30 && (vtkIdType(1) << (shift + 1)) <= most)
+  int shift = perTexel == 1 ? 0 : 2;
+  while (shift < 30 && (vtkIdType(1) << (shift + 1)) <= texels * perTexel)
   {
     ++shift;
   }
   const vtkIdType bandSamples = vtkIdType(1) << shift;
   const vtkIdType bands = (samples + bandSamples - 1) / bandSamples;
-  if (maxTexels < 1 || bands > kMaxBands || samples > VTK_INT_MAX)
+  // The last band's texels end at the last whole texel: a texel across the array's end
+  // could lie on memory that is not the array's. The last samples (fewer than a texel's)
+  // are handed to the shaders as uniforms.
+  const vtkIdType packed = samples - samples % perTexel;
+  if (maxTexels < 1 || bands > kMaxBands || samples > VTK_INT_MAX || packed == 0)
   {
     std::ostringstream why;
     why << samples << " samples need " << bands << " buffer textures of " << bandSamples
-        << " texels (at most " << kMaxBands << ")";
+        << " samples (at most " << kMaxBands << ")";
     return why.str();
   }
   while (glGetError() != GL_NO_ERROR)
   {
     // Errors of earlier calls are not ours to report.
   }
-  const GLenum internal = format == vtkGeoMipMapSampleTexture::Int16 ? GL_R16I
-    : format == vtkGeoMipMapSampleTexture::UInt16                    ? GL_R16UI
-                                                                     : GL_R32F;
+  const bool four = perTexel == kMaxPerTexel;
+  const GLenum internal = format == vtkGeoMipMapSampleTexture::Int16 ? (four ? GL_RGBA16I : GL_R16I)
+    : format == vtkGeoMipMapSampleTexture::UInt16                    ? (four ? GL_RGBA16UI : GL_R16UI)
+                                                                     : (four ? GL_RGBA32F : GL_R32F);
   const unsigned char* base = static_cast<const unsigned char*>(array->GetVoidPointer(0));
   GLenum err = GL_NO_ERROR;
   for (vtkIdType k = 0; k < bands && err == GL_NO_ERROR; ++k)
   {
-    Band b;
     const vtkIdType first = k * bandSamples;
-    const vtkIdType count = std::min(bandSamples, samples - first);
+    const vtkIdType count = std::min(bandSamples, packed - first);
+    if (count <= 0)
+    {
+      break; // the last band holds only the tail
+    }
+    Band b;
     glGenBuffers(1, &b.Buffer);
     glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, b.Buffer);
     // The array's memory becomes the buffer's storage (the driver does not copy it).
-    glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(count * texel),
-      base + first * texel, GL_STATIC_DRAW);
+    glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(count * sampleBytes),
+      base + first * sampleBytes, GL_STATIC_DRAW);
     glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, 0);
     glGenTextures(1, &b.Texture);
     glBindTexture(GL_TEXTURE_BUFFER, b.Texture);
@@ -112,7 +124,14 @@ std::string vtkGeoMipMapSharedHeights::Share(vtkOpenGLRenderWindow* win, vtkData
     return why.str();
   }
   this->BandShift = shift;
-  this->MaxBandSamples = maxBandSamples;
+  this->PerTexel = perTexel;
+  this->TailStart = packed;
+  std::fill(std::begin(this->Tail), std::end(this->Tail), 0.0f);
+  for (vtkIdType k = packed; k < samples; ++k)
+  {
+    this->Tail[k - packed] = static_cast<float>(array->GetComponent(k, 0));
+  }
+  this->MaxBandTexels = maxBandTexels;
   this->Source = array;
   this->SourceTime = array->GetMTime();
   this->Stored = format;

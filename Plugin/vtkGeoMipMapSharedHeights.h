@@ -8,12 +8,17 @@
  * 16385^2 DEM). With GL_AMD_pinned_memory the driver can use the array's own memory as
  * buffer storage instead: nothing is copied and nothing is allocated.
  *
- * The array is wrapped as buffer textures (samplerBuffer, texelFetch by sample index
- * j * nx + i), in bands of 2^BandShift() samples because one buffer texture holds at most
- * GL_MAX_TEXTURE_BUFFER_SIZE texels (2^27 on llvmpipe; a 16385^2 DEM takes 3 bands).
- * Float heights are read as R32F, 16-bit integer heights as R16I / R16UI, as the texture
- * path stores them, so the shaders see the same values. The array is held (reference
- * counted) while it is shared; a change of it (its MTime) or another array shares again.
+ * The array is wrapped as buffer textures read by sample index k = j * nx + i, with the
+ * formats the texture path stores (float as R32F, 16-bit integers as R16I / R16UI), so the
+ * shaders see the same values. One buffer texture holds at most GL_MAX_TEXTURE_BUFFER_SIZE
+ * texels (2^27 on llvmpipe). A DEM that fits takes one sample a texel. A larger one takes
+ * four (RGBA32F, RGBA16I / RGBA16UI: sample k is component k % 4 of texel k / 4), so that
+ * one band holds 2^29 samples (up to 23170^2: a 16385^2 DEM would take 3 bands of one
+ * sample a texel); beyond, bands of 2^BandShift() samples, picked in the shaders by a chain
+ * of branches, all of which llvmpipe runs. The last samples that fill no texel (up to 3)
+ * reach the shaders as uniforms (GetTail): a texel across the array's end could lie on
+ * memory that is not the array's. The array is held (reference counted) while it is
+ * shared; a change of it (its MTime) or another array shares again.
  *
  * On a GPU that has its own memory this would make every fetch cross the bus: Usable()
  * answers only for renderers that run on the CPU.
@@ -38,8 +43,10 @@ class vtkWindow;
 class vtkGeoMipMapSharedHeights
 {
 public:
-  /** Most bands a DEM may take (2^31 samples at 2^27 per band). */
+  /** Most bands a DEM may take (tests ask for small bands; 2^31 samples take 4). */
   static constexpr int kMaxBands = 16;
+  /** Samples in one texel of a band, for DEMs larger than one band of one a texel. */
+  static constexpr int kMaxPerTexel = 4;
 
   /**
    * True when `win`'s OpenGL runs on the CPU (Mesa llvmpipe or softpipe) and offers
@@ -55,18 +62,23 @@ public:
 
   /**
    * Shares `array` (`samples` values in `format`, SharesFormat) in bands of at most
-   * `maxBandSamples` samples (0: GL_MAX_TEXTURE_BUFFER_SIZE; rounded down to a power of
-   * two). Returns "" or why it could not (then nothing is held and the caller uploads a
-   * texture instead).
+   * `maxBandTexels` texels (0: GL_MAX_TEXTURE_BUFFER_SIZE) and a power of two samples.
+   * Returns "" or why it could not (then nothing is held and the caller uploads a texture
+   * instead).
    */
   std::string Share(vtkOpenGLRenderWindow* win, vtkDataArray* array,
-    vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandSamples = 0);
+    vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandTexels = 0);
 
   bool IsCurrent(vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format,
-    vtkIdType maxBandSamples = 0) const;
+    vtkIdType maxBandTexels = 0) const;
   bool HasData() const { return !this->Bands.empty(); }
   int GetBands() const { return static_cast<int>(this->Bands.size()); }
   int GetBandShift() const { return this->BandShift; }
+  /** 1, or kMaxPerTexel for a DEM larger than one band of one sample a texel. */
+  int GetSamplesPerTexel() const { return this->PerTexel; }
+  /** The samples from GetTailStart() on (fewer than a texel's), which no texel holds. */
+  vtkIdType GetTailStart() const { return this->TailStart; }
+  const float* GetTail() const { return this->Tail; }
 
   /** Binds every band to a free texture unit; `units` gets them, in band order. */
   void Activate(std::vector<int>& units);
@@ -89,9 +101,12 @@ private:
   };
   std::vector<Band> Bands;
   int BandShift = 0;
+  vtkIdType TailStart = 0;
+  int PerTexel = 1;
+  float Tail[kMaxPerTexel - 1] = { 0.0f, 0.0f, 0.0f };
   vtkSmartPointer<vtkDataArray> Source; // held: the driver reads its memory
   vtkMTimeType SourceTime = 0;
-  vtkIdType MaxBandSamples = 0;
+  vtkIdType MaxBandTexels = 0;
   vtkGeoMipMapSampleTexture::Format Stored = vtkGeoMipMapSampleTexture::Float32;
 };
 

@@ -17,8 +17,10 @@ vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
   nothing; lifting the limit draws it;
 - heights read in place (ShareHeights, where the renderer runs on the CPU: llvmpipe here)
   draw the texture path's surface bit for bit (depth buffers and pixels) for float, int16
-  and uint16 heights, in one band and in many (MaximumTileSize 64: bands of 4096 samples),
-  from 4 (float) or 2 (16-bit) bytes a sample less; elsewhere the texture is used.
+  and uint16 heights, in one band of one sample a texel, and in bands of four samples a
+  texel (MaximumTileSize 64: 3 bands of 4096 texels; 128: one band; the last sample in
+  no texel), from 4 (float) or 2 (16-bit) bytes a sample less; elsewhere the texture is
+  used.
 - lit with the slopes computed per fragment from the heights (SlopeTexture off): the
   slope texture's picture within its rounding, with a nodata hole too, 4 bytes a sample
   less.
@@ -147,7 +149,7 @@ def layer_texels(tile):
 on_cpu = "llvmpipe" in win.ReportCapabilities() or "softpipe" in win.ReportCapabilities()
 for name, z in (("float32", np.round(zf).astype(np.float32)), ("int16", zi), ("uint16", zu)):
     img = refscene.image_from_heights(z)
-    for tile in (0, 64):
+    for tile in (0, 64, 128):
         mt, at = ours(img, MaximumTileSize=tile)
         texture = frame(at)
         texture_depth, texture_bytes = refscene.depth(win), mt.GetGPUMemoryBytes()
@@ -156,7 +158,10 @@ for name, z in (("float32", np.round(zf).astype(np.float32)), ("int16", zi), ("u
         same = np.array_equal(texture, shared) and np.array_equal(texture_depth, refscene.depth(win))
         saved = texture_bytes - ms.GetGPUMemoryBytes()  # the same triangles: the same index bytes
         per_sample = 4 if name == "float32" else 2
-        bands = "one band" if tile == 0 else f"{-(-zf.size // 4096)} bands"
+        # A band holds MaximumTileSize^2 texels here: one sample a texel while one band
+        # holds the DEM, else four (the last sample, 47257 % 4, fills no texel).
+        bands = ("one band, one sample a texel" if tile == 0 else
+                 f"{-(-zf.size // (4 * tile * tile))} band(s) of four samples a texel")
         texels = layer_texels(tile)
         if on_cpu:
             check(ms.GetHeightsShared() and same and saved == per_sample * texels,
