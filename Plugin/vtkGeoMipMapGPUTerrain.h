@@ -42,7 +42,7 @@ public:
     vtkDataArray* Heights = nullptr;
     const gmm::Heightfield* HF = nullptr;
     bool Lit = false;           // slopes wanted for the fragment normals
-    bool SlopeTexture = true;   // lit: slopes from a texture, else from the heights per fragment
+    bool SlopeTexture = false;  // lit: slopes from a texture, else from the heights per fragment
     int MaximumTileSize = 0;    // 0: GL_MAX_TEXTURE_SIZE
     bool ShareHeights = true;   // read the heights in place where the renderer allows
                                 // (vtkGeoMipMapSharedHeights::Usable)

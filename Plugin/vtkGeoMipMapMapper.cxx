@@ -359,9 +359,13 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   {
     const double samples = static_cast<double>(image->GetNumberOfPoints());
     const auto format = vtkGeoMipMapSampleTexture::FormatFor(heights, false);
-    // Heights and slopes (for lighting) on the GPU.
-    double need = samples * (vtkGeoMipMapSampleTexture::BytesPerTexel(format) +
-                              vtkGeoMipMapSampleTexture::BytesPerTexel(vtkGeoMipMapSampleTexture::Slopes16F));
+    // Heights on the GPU, and the slope texture (for lighting) where asked for. (Heights
+    // read in place take none, but whether they can is known only in a render.)
+    double need = samples * vtkGeoMipMapSampleTexture::BytesPerTexel(format);
+    if (this->SlopeTexture)
+    {
+      need += samples * vtkGeoMipMapSampleTexture::BytesPerTexel(vtkGeoMipMapSampleTexture::Slopes16F);
+    }
     if (!(heights->GetDataType() == VTK_FLOAT && heights->GetNumberOfComponents() == 1))
     {
       need += samples * sizeof(float);

@@ -197,13 +197,13 @@ public:
 
   ///@{
   /**
-   * Lit terrain takes its normals from the full-resolution slopes. On (default): a slope
-   * texture made once from the heights (4 bytes a sample: RG16F), one to three fetches per
-   * fragment. Off: the slopes are computed per fragment from the heights (central
-   * differences, the same rule, 10 height fetches), no texture: 4 bytes a sample and its
-   * making saved (a 16385^2 DEM on llvmpipe: 3.6 s less at the first render, 1 GB less),
-   * for frames 1.09x (4097^2) to 1.23x (16385^2) slower there. The two differ by the slope
-   * texture's half-float rounding.
+   * Lit terrain takes its normals from the full-resolution slopes. Off (default): they are
+   * computed per fragment from the heights (central differences, one-sided beside the
+   * border and nodata; 10 height fetches). On: from a slope texture made once from the
+   * heights (4 bytes a sample, RG16F; one to three fetches per fragment). The texture costs
+   * its memory and its making (a 16385^2 DEM on llvmpipe: 1 GB and 3.6 s more at the first
+   * render) and saves frame time on llvmpipe (frames 1.09x faster at 4097^2, 1.23x at
+   * 16385^2; not measured on a GPU). The two differ by the texture's half-float rounding.
    */
   vtkSetMacro(SlopeTexture, bool);
   vtkGetMacro(SlopeTexture, bool);
@@ -493,7 +493,7 @@ protected:
   vtkTypeInt64 MemoryLimit = 0;
   int MaximumTileSize = 0;
   bool ShareHeights = true;
-  bool SlopeTexture = true;
+  bool SlopeTexture = false;
   double LastUpdateTime = 0.0;
   int NumberOfHeightUploads = 0;
   int NumberOfIndexUploads = 0;

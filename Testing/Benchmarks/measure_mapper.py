@@ -5,10 +5,12 @@ llvmpipe the "GPU" textures and buffers live in the same RSS, so one run per DEM
 height type gives an honest bytes-per-sample figure, input image included.
 
     xvfb-run -a /usr/bin/python3 measure_mapper.py 8193 [float32|int16] [--frames 24]
-        [--no-color] [--no-lighting] [--no-share] [--no-slope-texture]
+        [--no-color] [--no-lighting] [--no-share] [--slope-texture | --no-slope-texture]
 
 --no-share: heights always in a texture (ShareHeights off), as on a GPU with its own memory.
---no-slope-texture: slopes computed per fragment from the heights (SlopeTexture off).
+--slope-texture: slopes from a slope texture (SlopeTexture on).
+--no-slope-texture: slopes computed per fragment from the heights (SlopeTexture off, the
+default since 2026-12-01; for the mapper before it).
 
 Steps, each timed: generate the DEM (vtkGeoMipMapFractalSource; int16 = the same heights
 rounded, converted in row bands so no second float copy is held), first frame (the
@@ -85,6 +87,8 @@ def main(argv):
         mapper.ScalarVisibilityOff()
     if "--no-share" in argv and hasattr(mapper, "SetShareHeights"):
         mapper.SetShareHeights(False)
+    if "--slope-texture" in argv:
+        mapper.SetSlopeTexture(True)
     if "--no-slope-texture" in argv and hasattr(mapper, "SetSlopeTexture"):
         mapper.SetSlopeTexture(False)
     actor = vtkActor()

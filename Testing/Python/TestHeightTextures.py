@@ -21,9 +21,9 @@ vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
   texel (MaximumTileSize 64: 3 bands of 4096 texels; 128: one band; the last sample in
   no texel), from 4 (float) or 2 (16-bit) bytes a sample less; elsewhere the texture is
   used.
-- lit with the slopes computed per fragment from the heights (SlopeTexture off): the
-  slope texture's picture within its rounding, with a nodata hole too, 4 bytes a sample
-  less.
+- lit with the slopes computed per fragment from the heights (SlopeTexture off, the
+  default): the slope texture's picture within its rounding, with a nodata hole too, 4
+  bytes a sample less.
 The texture-path cases run with ShareHeights off, as on a GPU with its own memory.
 """
 
@@ -87,11 +87,11 @@ def differing(a, b, tol=24):
 ref = refscene.reference_actor(base)
 stock = frame(ref)
 
-# Tiling: 5 x 3 layers of 64 x 64 texels against one layer.
-m1, a1 = ours(base)
+# Tiling: 5 x 3 layers of 64 x 64 texels against one layer, the slopes tiled too.
+m1, a1 = ours(base, SlopeTexture=True)
 one = frame(a1)
 one_depth = refscene.depth(win)
-m2, a2 = ours(base, MaximumTileSize=64)
+m2, a2 = ours(base, MaximumTileSize=64, SlopeTexture=True)
 tiled = frame(a2)
 check(np.array_equal(one_depth, refscene.depth(win)),
       "5 x 3 texture layers draw the one-layer surface bit for bit (depth buffers)")
@@ -172,18 +172,19 @@ for name, z in (("float32", np.round(zf).astype(np.float32)), ("int16", zi), ("u
             check(not ms.GetHeightsShared() and same,
                   f"{name} heights on a GPU with its own memory: a texture, as without ShareHeights")
 
-# Slopes computed per fragment from the heights (SlopeTexture off): the slope texture's
-# picture but for its half-float rounding (and, on one layer, its bilinear filtering), with
-# a nodata hole too (one-sided differences beside it), read in place or from the texture.
+# Slopes computed per fragment from the heights (SlopeTexture off, the default): the slope
+# texture's picture but for its half-float rounding (and, on one layer, its bilinear
+# filtering), with a nodata hole too (one-sided differences beside it), the heights read in
+# place or from the texture.
 hole = np.round(zf).astype(np.float32)
 hole[60:80, 100:140] = np.nan
 for name, z in (("no nodata", np.round(zf).astype(np.float32)), ("a nodata hole", hole)):
     img = refscene.image_from_heights(z)
     for tile, share in ((0, False), (64, False), (64, True)):
-        mt, at = ours(img, MaximumTileSize=tile, ShareHeights=share)
+        mt, at = ours(img, MaximumTileSize=tile, ShareHeights=share, SlopeTexture=True)
         texture = frame(at)
         texture_bytes = mt.GetGPUMemoryBytes()
-        mf, af = ours(img, MaximumTileSize=tile, ShareHeights=share, SlopeTexture=False)
+        mf, af = ours(img, MaximumTileSize=tile, ShareHeights=share)  # SlopeTexture off by default
         per_fragment = frame(af)
         drawn = refscene.covered(per_fragment, BG)
         d = differing(texture, per_fragment, 8) / drawn.mean()  # of the terrain's pixels
