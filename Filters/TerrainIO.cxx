@@ -5,6 +5,7 @@
 #include "TerrainGeographic.h" // geoGrid
 
 #include "Heightfield.h" // gmm::kMaxHeight
+#include "HugePages.h"   // gmm::resizeOnHugePages
 
 #include <GeographicLib/Constants.hpp>
 #include <GeographicLib/Ellipsoid.hpp>
@@ -361,7 +362,7 @@ std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions&
   const double offset = (hasOffset ? bandOffset : 0.0) * unitToMetre * opt.heightScale + opt.heightOffset;
 
   const int nx = out.nx, ny = out.ny;
-  out.z.resize(static_cast<std::size_t>(nx) * ny);
+  gmm::resizeOnHugePages(out.z, static_cast<std::size_t>(nx) * ny);
   const int chunk = std::max(1, std::min(ny, (1 << 22) / nx));
   std::vector<float> buf(static_cast<std::size_t>(chunk) * nx);
   for (int r0 = 0; r0 < ny; r0 += chunk)
@@ -473,7 +474,7 @@ std::string oiioRead(const Input& file, double fileSize, const TerrainReadOption
   }
   const int nx = out.nx, ny = out.ny;
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  out.z.resize(n);
+  gmm::resizeOnHugePages(out.z, n);
   const double scale = opt.heightScale, offset = opt.heightOffset;
   const TypeDesc f = spec.format;
   const bool isFloat = f == TypeDesc::HALF || f == TypeDesc::FLOAT || f == TypeDesc::DOUBLE;

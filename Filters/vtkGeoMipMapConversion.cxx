@@ -9,8 +9,9 @@
 #include "vtkObject.h"
 #include "vtkPointData.h"
 
-#include "Engine.h"   // gmm::validateHeightScale
-#include "Quadtree.h" // gmm::validateBlockSize
+#include "Engine.h"    // gmm::validateHeightScale
+#include "HugePages.h" // gmm::resizeOnHugePages
+#include "Quadtree.h"  // gmm::validateBlockSize
 
 #include <algorithm>
 #include <cmath>
@@ -104,7 +105,7 @@ std::string ImageToHeightfield(vtkImageData* image, gmm::Heightfield& hf, vtkDat
       return std::string();
     }
   }
-  hf.z.resize(n);
+  gmm::resizeOnHugePages(hf.z, n);
   switch (a->GetDataType())
   {
     vtkTemplateMacro(

@@ -8,6 +8,7 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include "HugePages.h" // gmm::adviseHugePages
 #include "SyntheticTerrain.h"
 
 #include <cmath>
@@ -87,6 +88,7 @@ int vtkGeoMipMapFractalSource::RequestData(
   vtkNew<vtkFloatArray> heights;
   heights->SetName("Elevation");
   heights->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  gmm::adviseHugePages(heights->GetPointer(0), static_cast<std::size_t>(nx) * ny * sizeof(float));
   if (!gmm::fillSyntheticTerrain(
         heights->GetPointer(0), nx, ny, this->Spacing, this->Seed, this->Amplitude))
   {

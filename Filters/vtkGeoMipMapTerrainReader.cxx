@@ -16,6 +16,7 @@
 
 #include "TerrainFill.h"       // checkFillOptions, fillMemoryBytes
 #include "TerrainGeographic.h" // geographicToLocal, localToGeographic
+#include "HugePages.h" // gmm::adviseHugePages
 #include "TerrainIO.h"
 
 #include <algorithm>
@@ -152,6 +153,7 @@ int vtkGeoMipMapTerrainReader::RequestData(
   vtkNew<vtkFloatArray> heights;
   heights->SetName("Elevation");
   heights->SetNumberOfTuples(static_cast<vtkIdType>(raster.z.size()));
+  gmm::adviseHugePages(heights->GetPointer(0), raster.z.size() * sizeof(float));
   std::memcpy(heights->GetPointer(0), raster.z.data(), raster.z.size() * sizeof(float));
   const bool anyValid =
     std::any_of(raster.z.begin(), raster.z.end(), [](float z) { return std::isfinite(z); });

@@ -1,5 +1,6 @@
 #include "ErrorTable.h"
 
+#include "HugePages.h"
 #include "Levels.h"
 #include "Parallel.h"
 #include "RasterError.h"
@@ -184,12 +185,16 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   t.levels = maxTop + 1;
   t.pairs = t.levels * (t.levels - 1) / 2;
   const std::size_t blocks = static_cast<std::size_t>(qt.blockCount());
-  t.ownError.assign(blocks * t.levels, kInf);
-  t.ownErrorExact.assign(blocks * t.levels, kInf);
-  t.stripError.assign(blocks * 4 * std::max(1, t.pairs), 0.0f);
+  t.ownError.clear();
+  t.ownErrorExact.clear();
+  t.stripError.clear();
+  t.mergedError.clear();
+  resizeOnHugePages(t.ownError, blocks * t.levels, kInf);
+  resizeOnHugePages(t.ownErrorExact, blocks * t.levels, kInf);
+  resizeOnHugePages(t.stripError, blocks * 4 * std::max(1, t.pairs), 0.0f);
 
   const std::size_t nodes = qt.nodes.size();
-  t.mergedError.assign(nodes, kInf);
+  resizeOnHugePages(t.mergedError, nodes, kInf);
   // Work items: every block, then every quadtree node (its merged fan).
   const std::size_t items = blocks + nodes;
 

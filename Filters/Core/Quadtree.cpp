@@ -1,5 +1,6 @@
 #include "Quadtree.h"
 
+#include "HugePages.h"
 #include "Parallel.h"
 
 #include <algorithm>
@@ -150,8 +151,8 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
   qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads);
   qt.blockCols = static_cast<int>(qt.colStart.size()) - 1;
   qt.blockRows = static_cast<int>(qt.rowStart.size()) - 1;
-  qt.blockBox.resize(qt.blockCount());
-  qt.blockHasNodata.resize(qt.blockCount());
+  resizeOnHugePages(qt.blockBox, qt.blockCount());
+  resizeOnHugePages(qt.blockHasNodata, qt.blockCount());
   // Rows of blocks in parallel: each writes its own blocks' entries.
   parallelChunks(static_cast<std::size_t>(qt.blockRows), 1, threads, [&](std::size_t first, std::size_t last) {
     for (int r = static_cast<int>(first); r < static_cast<int>(last); ++r)

@@ -1,5 +1,6 @@
 #include "SyntheticTerrain.h"
 
+#include "HugePages.h"
 #include "Parallel.h"
 
 #include <algorithm>
@@ -123,7 +124,7 @@ Heightfield makeSyntheticTerrain(
   hf.nx = nx;
   hf.ny = ny;
   hf.dx = hf.dy = spacing;
-  hf.z.resize(static_cast<std::size_t>(nx) * ny);
+  resizeOnHugePages(hf.z, static_cast<std::size_t>(nx) * ny);
   fillSyntheticTerrain(hf.z.data(), nx, ny, spacing, seed, amplitude, threads);
   return hf;
 }

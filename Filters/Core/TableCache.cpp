@@ -1,5 +1,6 @@
 #include "TableCache.h"
 
+#include "HugePages.h"
 #include "Levels.h"
 #include "Parallel.h"
 
@@ -195,10 +196,10 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   }
   out.levels = levels;
   out.pairs = pairs;
-  out.ownError.resize(own);
-  out.ownErrorExact.resize(own);
-  out.stripError.resize(strips);
-  out.mergedError.resize(nodes);
+  resizeOnHugePages(out.ownError, own);
+  resizeOnHugePages(out.ownErrorExact, own);
+  resizeOnHugePages(out.stripError, strips);
+  resizeOnHugePages(out.mergedError, nodes);
   uint64_t stored = 0;
   in.read(reinterpret_cast<char*>(out.ownError.data()), own * sizeof(float));
   in.read(reinterpret_cast<char*>(out.ownErrorExact.data()), own * sizeof(float));
