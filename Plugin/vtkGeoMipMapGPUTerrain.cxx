@@ -223,7 +223,7 @@ void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightf
   if (p->IsUniformUsed("gmmTailStart"))
   {
     p->SetUniformi("gmmTailStart", static_cast<int>(this->Shared.GetTailStart()));
-    p->SetUniform1fv("gmmTail", 3, this->Shared.GetTail());
+    p->SetUniform1fv("gmmTail", this->Shared.GetSamplesPerTexel() - 1, this->Shared.GetTail());
   }
   seti("gmmSlopes", this->SlopesUnit);
   seti("gmmColors", this->ColorsUnit);

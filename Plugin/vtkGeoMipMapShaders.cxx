@@ -21,15 +21,22 @@ std::string SamplerFor(vtkGeoMipMapShaders::Options::Heights h, const char* kind
 }
 
 // Heights read in place (vtkGeoMipMapSharedHeights.h): sample k = j * nx + i of bands of
-// 2^gmmBandShift samples, one buffer texture each, one sample a texel or four (component
-// k % 4 of texel k / 4; then the last samples that fill no texel are uniforms). With
+// 2^gmmBandShift samples, one buffer texture each, n = HeightsPerTexel samples a texel
+// (component k % n of texel k / n; the last samples that fill no texel are uniforms). With
 // several bands the band is picked by a chain of branches: indexing an array of samplers by
 // a value that differs between vertices is undefined in GLSL 4.5.
 std::string SharedHeightFetch(const vtkGeoMipMapShaders::Options& o)
 {
-  const bool packed = o.HeightsPerTexel > 1;
+  const int n = o.HeightsPerTexel; // a power of two
+  const bool packed = n > 1;
+  int log2n = 0;
+  while ((1 << log2n) < n)
+  {
+    ++log2n;
+  }
+  const std::string tail = std::to_string(n - 1), shift = std::to_string(log2n);
   std::string s = "uniform int gmmBandShift;\n";
-  s += packed ? "uniform int gmmTailStart;\nuniform float gmmTail[3];\n" : "";
+  s += packed ? "uniform int gmmTailStart;\nuniform float gmmTail[" + tail + "];\n" : "";
   for (int k = 0; k < o.HeightBands; ++k)
   {
     s += "uniform highp " + SamplerFor(o.HeightFormat, "Buffer") + " gmmHeightBand" + std::to_string(k) + ";\n";
@@ -39,7 +46,7 @@ std::string SharedHeightFetch(const vtkGeoMipMapShaders::Options& o)
        "  int k = ij.y * gmmGridSize.x + ij.x;\n";
   s += packed ? "  int t = min(k, gmmTailStart - 1);\n" : "  int t = k;\n";
   s += "  float h;\n";
-  const std::string texel = packed ? "t >> 2)[t & 3]" : "t).r";
+  const std::string texel = packed ? "t >> " + shift + ")[t & " + tail + "]" : "t).r";
   if (o.HeightBands == 1)
   {
     s += "  h = float(texelFetch(gmmHeightBand0, " + texel + ");\n";
@@ -55,7 +62,8 @@ std::string SharedHeightFetch(const vtkGeoMipMapShaders::Options& o)
                                  : "  else { " + fetch + " }\n";
     }
   }
-  return s + (packed ? "  return k < gmmTailStart ? h : gmmTail[clamp(k - gmmTailStart, 0, 2)];\n}\n" : "  return h;\n}\n");
+  return s + (packed ? "  return k < gmmTailStart ? h : gmmTail[clamp(k - gmmTailStart, 0, " + tail + " - 1)];\n}\n"
+                      : "  return h;\n}\n");
 }
 
 // Sample (i, j) of a tiled array texture (vtkGeoMipMapTextures.h): layer, then texel. One

@@ -52,7 +52,7 @@ struct Options
   bool Morph = false;              // vertices are geomorphed (vtkGeoMipMapMorphTexture.h)
   int HeightBands = 0; // > 0: heights read in place from this many buffer textures
                        // (vtkGeoMipMapSharedHeights.h) instead of the height texture
-  int HeightsPerTexel = 1; // samples in one texel of those buffer textures: 1 or 4
+  int HeightsPerTexel = 1; // samples in one texel of those buffer textures (a power of two)
   bool SlopesFromHeights = false; // lit: slopes computed per fragment, no slope texture
 
   /** A short string that differs when the shader source must differ. */
