@@ -3,6 +3,7 @@
     xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench_budget.py \
         [--dems sthelens,rainier,puget,synthetic4097] [--frames 60] [--fps 10] \
         [--size 960x540] [--measure-every 6] [--budget 150000] [--no-lod-actors] [--trace]
+        [--slope-texture]
 
 Per DEM, one orbit (geomipmap.flight.Orbit, terrain following at 300 m clearance, pitch 15,
 --frames frames) flown in five ways in the same process:
@@ -55,6 +56,8 @@ def parse():
                    help="which of the four parts to run (rate, lod, fixed, order)")
     p.add_argument("--block-order", action="store_true",
                    help="FrontToBack off in modes 1 and 3 (for comparison runs)")
+    p.add_argument("--slope-texture", action="store_true",
+                   help="SlopeTexture on in modes 1 and 3 (the default before 2026-12-01, session 5)")
     p.add_argument("--trace", action="store_true",
                    help="print each frame of the frame-rate mode (ms, budget, triangles, error)")
     p.add_argument("--data", default=os.environ.get("GEOMIPMAP_DATA_DIR", os.path.join(
@@ -174,6 +177,7 @@ def frame_rate_mode(image, flight, args, size, out):
     m.SetInputData(image)
     m.SetPixelError(0.0)
     m.SetFrontToBack(not args.block_order)
+    m.SetSlopeTexture(args.slope_texture)
     m.FollowAllocatedRenderTimeOn()
     from vtkmodules.vtkRenderingCore import vtkActor
     a = vtkActor()
@@ -291,6 +295,7 @@ def fixed_budget_mode(image, flight, args, size, out):
     m.SetInputData(image)
     m.SetPixelError(0.0)
     m.SetFrontToBack(not args.block_order)
+    m.SetSlopeTexture(args.slope_texture)
     m.SetTriangleBudget(args.budget)
     a = vtkActor()
     a.SetMapper(m)
