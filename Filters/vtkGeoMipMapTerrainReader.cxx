@@ -14,9 +14,9 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "HugePages.h"         // gmm::adviseHugePages
 #include "TerrainFill.h"       // checkFillOptions, fillMemoryBytes
 #include "TerrainGeographic.h" // geographicToLocal, localToGeographic
-#include "HugePages.h" // gmm::adviseHugePages
 #include "TerrainIO.h"
 
 #include <algorithm>

@@ -6,7 +6,7 @@
 // advised MADV_HUGEPAGE (transparent huge pages in "madvise" mode, Debian's default): 512
 // faults a GiB, 0.1 s on the same VM once huge pages are free (2.1 s when the kernel has
 // to compact memory for them first). So every buffer of the DEM's size that the engine or
-// its readers allocate goes through reserveHugePages before it is first written.
+// its readers allocate is advised (adviseHugePages, resizeOnHugePages) before its first write.
 #pragma once
 
 #include <cstddef>
