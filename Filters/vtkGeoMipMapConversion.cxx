@@ -255,29 +255,8 @@ bool AcceptHeightScale(vtkObject* self, double scale, double& current)
 //------------------------------------------------------------------------------
 void SampleNormal(const gmm::Heightfield& hf, int i, int j, double heightScale, float n[3])
 {
-  // Slope along one axis from the valid neighbours of (i, j): central when both exist.
-  auto slope = [&hf](int i0, int j0, int di, int dj, double step, int count) {
-    const float c = hf.height(i0, j0);
-    const int ia = i0 - di, ja = j0 - dj, ib = i0 + di, jb = j0 + dj;
-    const bool hasA = ia >= 0 && ja >= 0 && std::isfinite(hf.height(ia, ja));
-    const bool hasB = ib < hf.nx && jb < hf.ny && (di ? ib < count : jb < count) &&
-      std::isfinite(hf.height(ib, jb));
-    if (hasA && hasB)
-    {
-      return (hf.height(ib, jb) - hf.height(ia, ja)) / (2.0 * step);
-    }
-    if (hasB && std::isfinite(c))
-    {
-      return (hf.height(ib, jb) - c) / step;
-    }
-    if (hasA && std::isfinite(c))
-    {
-      return (c - hf.height(ia, ja)) / step;
-    }
-    return 0.0;
-  };
-  const double gx = heightScale * slope(i, j, 1, 0, hf.dx, hf.nx);
-  const double gy = heightScale * slope(i, j, 0, 1, hf.dy, hf.ny);
+  const double gx = heightScale * gmm::sampleSlope(hf, i, j, true);
+  const double gy = heightScale * gmm::sampleSlope(hf, i, j, false);
   // Upward normal of z = h(x, y); the sign of dx, dy is already inside gx, gy.
   const double len = std::sqrt(gx * gx + gy * gy + 1.0);
   n[0] = static_cast<float>(-gx / len);

@@ -80,7 +80,7 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     !this->Slopes.IsCurrent(in.Heights, vtkGeoMipMapSampleTexture::Slopes16F, this->Layout))
   {
     const auto start = std::chrono::steady_clock::now();
-    r.HeightsError = this->Slopes.UploadSlopes(win, hf.heights(), hf.dx, hf.dy, in.Heights, this->Layout);
+    r.HeightsError = this->Slopes.UploadSlopes(win, hf, in.Heights, this->Layout);
     r.UploadSeconds += SecondsSince(start);
   }
   if (!r.HeightsError.empty())

@@ -128,8 +128,7 @@ const char* const kNormalOnTriangle =
   "  vec2 g = t.w.x * s0 + t.w.y * s1 + t.w.z * s2;\n"
   "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
-// Slopes from the slope texture (central differences as vtkGeoMipMapConversion::
-// SampleNormal computes them, made once at upload).
+// Slopes from the slope texture (gmm::sampleSlope, made once at upload).
 const char* const kSlopeFromTexture =
   "uniform highp sampler2DArray gmmSlopes;\n"
   "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n"
@@ -140,8 +139,8 @@ const char* const kSlopeFromTexture =
   "  s2 = gmmSlope(t.c + ivec2(1));\n"
   "}\n";
 // Slopes computed per fragment from the heights (SlopeTexture off: no slope texture), by
-// the same rule: central differences, one-sided next to the border or nodata, 0 where
-// neither neighbour is valid. The three vertices' 15 neighbours are 10 distinct samples:
+// gmm::sampleSlope's rule (Heightfield.h): central differences, one-sided next to the
+// border or nodata, 0 where neither neighbour is valid. The three vertices' 15 neighbours are 10 distinct samples:
 // the quad's corners, two beyond each of c and c + (1, 1), and two beyond c + d (which two
 // depends on d). Fetched without branches (llvmpipe runs both sides of a branch), at
 // positions clamped into the grid; a clamped one is never used (hasA / hasB).

@@ -195,22 +195,9 @@ std::string vtkGeoMipMapSampleTexture::Upload(vtkOpenGLRenderWindow* win, vtkDat
 }
 
 //------------------------------------------------------------------------------
-std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win, const float* z,
-  double dx, double dy, vtkDataArray* source, const vtkGeoMipMapTileLayout& layout)
+std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win,
+  const gmm::Heightfield& hf, vtkDataArray* source, const vtkGeoMipMapTileLayout& layout)
 {
-  const int nx = layout.nx, ny = layout.ny;
-  // Slope along one axis at sample k, neighbours a (before) and b (after) when present.
-  auto slope = [z](size_t k, bool hasA, size_t a, bool hasB, size_t b, double step) {
-    const bool okA = hasA && !std::isnan(z[a]), okB = hasB && !std::isnan(z[b]);
-    const bool okC = !std::isnan(z[k]);
-    if (okA && okB)
-      return (static_cast<double>(z[b]) - z[a]) / (2.0 * step);
-    if (okB && okC)
-      return (static_cast<double>(z[b]) - z[k]) / step;
-    if (okA && okC)
-      return (static_cast<double>(z[k]) - z[a]) / step;
-    return 0.0;
-  };
   std::string err = this->UploadTiles(win, Slopes16F, layout,
     [&](int i0, int j0, int w, int h, const void*& pixels, int& rowLength,
       std::vector<unsigned char>& scratch) {
@@ -224,10 +211,9 @@ std::string vtkGeoMipMapSampleTexture::UploadSlopes(vtkOpenGLRenderWindow* win, 
         {
           for (int i = i0; i < i0 + w; ++i)
           {
-            const size_t k = static_cast<size_t>(j) * nx + i;
             uint16_t* t = out + 2 * ((static_cast<size_t>(j - j0)) * w + (i - i0));
-            t[0] = gmm::halfOf(static_cast<float>(slope(k, i > 0, k - 1, i + 1 < nx, k + 1, dx)));
-            t[1] = gmm::halfOf(static_cast<float>(slope(k, j > 0, k - nx, j + 1 < ny, k + nx, dy)));
+            t[0] = gmm::halfOf(static_cast<float>(gmm::sampleSlope(hf, i, j, true)));
+            t[1] = gmm::halfOf(static_cast<float>(gmm::sampleSlope(hf, i, j, false)));
           }
         }
       };

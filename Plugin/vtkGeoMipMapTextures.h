@@ -36,6 +36,10 @@
 #include <string>
 #include <vector>
 
+namespace gmm
+{
+struct Heightfield;
+}
 class vtkDataArray;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
@@ -94,12 +98,10 @@ public:
     const vtkGeoMipMapTileLayout& layout);
 
   /**
-   * Uploads the slopes of the heights `z` (nx * ny floats, NaN = nodata, spacing dx, dy)
-   * as Slopes16F: dh/dx and dh/dy by central differences, one-sided next to the border or
-   * nodata, 0 where neither neighbour is valid (vtkGeoMipMapConversion::SampleNormal's
-   * rule). `source` / `sourceTime` identify the heights for IsCurrent.
+   * Uploads the slopes of the engine's heights `hf` as Slopes16F: dh/dx and dh/dy by
+   * gmm::sampleSlope (Heightfield.h). `source` identifies the heights for IsCurrent.
    */
-  std::string UploadSlopes(vtkOpenGLRenderWindow* win, const float* z, double dx, double dy,
+  std::string UploadSlopes(vtkOpenGLRenderWindow* win, const gmm::Heightfield& hf,
     vtkDataArray* source, const vtkGeoMipMapTileLayout& layout);
 
   bool IsCurrent(vtkDataArray* array, Format format, const vtkGeoMipMapTileLayout& layout) const;

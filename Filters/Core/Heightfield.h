@@ -6,6 +6,7 @@
 // counter-clockwise seen from +z in world coordinates either way.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -36,6 +37,28 @@ struct Heightfield
   // True when (i, j) -> (x, y) mirrors orientation, so index winding must be flipped.
   bool mirrored() const { return (dx < 0) != (dy < 0); }
 };
+
+// The slope of the heights at sample (i, j) along x (alongX) or y, in height units per unit
+// of spacing: the central difference between the two neighbours when both are valid, else
+// one-sided with the sample itself, else 0 (border, nodata). The one rule for lit normals:
+// the filter's (vtkGeoMipMapConversion::SampleNormal), the mapper's slope texture and its
+// per-fragment slopes (GLSL, kSlopeFromHeights in vtkGeoMipMapShaders.cxx, which mirrors it).
+inline double sampleSlope(const Heightfield& hf, int i, int j, bool alongX)
+{
+  const float* z = hf.heights();
+  const std::size_t k = hf.index(i, j), step = alongX ? 1 : static_cast<std::size_t>(hf.nx);
+  const bool hasA = alongX ? i > 0 : j > 0, hasB = alongX ? i + 1 < hf.nx : j + 1 < hf.ny;
+  const double spacing = alongX ? hf.dx : hf.dy;
+  const bool okA = hasA && std::isfinite(z[k - step]), okB = hasB && std::isfinite(z[k + step]);
+  const bool okC = std::isfinite(z[k]);
+  if (okA && okB)
+    return (static_cast<double>(z[k + step]) - z[k - step]) / (2.0 * spacing);
+  if (okB && okC)
+    return (static_cast<double>(z[k + step]) - z[k]) / spacing;
+  if (okA && okC)
+    return (static_cast<double>(z[k]) - z[k - step]) / spacing;
+  return 0.0;
+}
 
 // Largest accepted |height| of a finite sample. The difference of two heights is the
 // largest geometric error the error table can hold, and it must stay a finite float (+inf

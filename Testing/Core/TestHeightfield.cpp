@@ -219,3 +219,48 @@ TEST(Heightfield, ParallelScansAgreeWithOneThread)
     EXPECT_EQ(many.nodes.size(), one.nodes.size());
   }
 }
+
+TEST(Heightfield, SampleSlopeByHand)
+{
+  // 4 x 3 samples, spacing 2 (x) and 0.5 (y). Heights 3 i + 10 j except a quadratic bump at
+  // (1, 1) and nodata at (2, 2).
+  gmm::Heightfield hf;
+  hf.nx = 4;
+  hf.ny = 3;
+  hf.dx = 2.0;
+  hf.dy = 0.5;
+  for (int j = 0; j < hf.ny; ++j)
+  {
+    for (int i = 0; i < hf.nx; ++i)
+    {
+      hf.z.push_back(static_cast<float>(3 * i + 10 * j));
+    }
+  }
+  hf.z[hf.index(1, 1)] = 20.0f; // was 13
+  hf.z[hf.index(2, 2)] = std::numeric_limits<float>::quiet_NaN();
+  // Central: (h(2, 0) - h(0, 0)) / (2 dx) = 6 / 4; along y at (0, 1): (20 - 0) / (2 dy) = 20.
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 1, 0, true), 1.5);
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 0, 1, false), 20.0);
+  // The bump's own slopes do not use its height: (16 - 10) / 4 and (23 - 3) / 1.
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 1, 1, true), 1.5);
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 1, 1, false), 20.0);
+  // Borders: one-sided. (3 - 0) / 2 at (0, 0); (9 - 6) / 2 at (3, 0); (29 - 19) / 0.5 at
+  // (3, 2) along y.
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 0, 0, true), 1.5);
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 3, 0, true), 1.5);
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 3, 2, false), 20.0);
+  // Beside nodata: one-sided away from it. At (2, 1) along y: (16 - 6) / 0.5; at (1, 2)
+  // along x: (23 - 20) / 2, away from the nodata at (2, 2).
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 2, 1, false), 20.0);
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 1, 2, true), 1.5);
+  // Nodata itself with valid neighbours: their central difference, (29 - 23) / 4.
+  EXPECT_DOUBLE_EQ(gmm::sampleSlope(hf, 2, 2, true), 1.5);
+  // Neither neighbour valid, the sample itself nodata: 0 (a 2 x 2 of nodata but one).
+  gmm::Heightfield holes;
+  holes.nx = holes.ny = 2;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  holes.z = { nan, 1.0f, nan, nan };
+  EXPECT_EQ(gmm::sampleSlope(holes, 0, 0, true), 0.0);
+  EXPECT_EQ(gmm::sampleSlope(holes, 0, 0, false), 0.0);
+  EXPECT_EQ(gmm::sampleSlope(holes, 1, 1, false), 0.0);
+}
