@@ -20,7 +20,36 @@ namespace
 void textureSize(const gmm::Quadtree& qt, int& width, int& height)
 {
   width = std::max(qt.blockCols, qt.blockRows) + 1;
-  height = 3 * qt.blockRows + 3;
+  height = 3 * qt.blockRows + 1;
+}
+
+// The widest row of gmmSampleBands: a power of two, so that the shader finds a sample's
+// texel by a shift and a mask (integer division is scalarised on software rasterisers).
+// 64 texels: a 257-sample DEM already spans rows, so small test DEMs check the addressing,
+// and (nx + ny) / 64 rows fit the 16384 of GL_MAX_TEXTURE_SIZE up to 2^19 samples a side.
+constexpr int kMaxSampleBandsShift = 6;
+
+// The (band, first sample, last sample) of every sample along one axis of the quadtree's
+// bands (`start`: band starts, then the end), 4 floats each, appended to `out`: band k
+// holds samples [start[k], start[k + 1]], its last sample shared with band k + 1, which
+// gmm::morphedHeight's band search assigns to band k + 1 (the last one to the last band).
+void appendSampleBands(const std::vector<int>& start, int rowTexels, std::vector<float>& out)
+{
+  const int samples = start.back() + 1;
+  const size_t first = out.size();
+  out.resize(first + (static_cast<size_t>(samples + rowTexels - 1) / rowTexels) * rowTexels * 4, 0.0f);
+  int k = 0;
+  for (int s = 0; s < samples; ++s)
+  {
+    while (k + 2 < static_cast<int>(start.size()) && start[k + 1] <= s)
+    {
+      ++k;
+    }
+    float* t = &out[first + static_cast<size_t>(s) * 4];
+    t[0] = static_cast<float>(k);
+    t[1] = static_cast<float>(start[k]);
+    t[2] = static_cast<float>(start[k + 1]);
+  }
 }
 
 // Where block b's texel and its four edges' texels are (x, y), South, East, North, West.
@@ -70,7 +99,7 @@ std::string vtkGeoMipMapMorphTexture::Update(
   textureSize(qt, width, height);
   const bool sameLayout = this->Blocks[0] == bc && this->Blocks[1] == br && this->Size[0] == width &&
     this->Size[1] == height && this->Texture->GetHandle() != 0 && this->Texture->GetContext() == win &&
-    frame.blockT.size() == static_cast<size_t>(bc) * br;
+    this->SampleBands->GetHandle() != 0 && frame.blockT.size() == static_cast<size_t>(bc) * br;
   if (!sameLayout)
   {
     return this->Build(win, qt, frame);
@@ -146,23 +175,10 @@ std::string vtkGeoMipMapMorphTexture::Build(
            "unmorphed";
   }
   this->Data.assign(static_cast<size_t>(width) * height * 2, 0.0f);
-  auto put = [&](int x, int y, float a, float b) {
-    float* t = &this->Data[(static_cast<size_t>(y) * width + x) * 2];
-    t[0] = a;
-    t[1] = b;
-  };
   // Every edge is one of some block's four: the blocks write every block and edge texel.
   for (int b = 0; b < qt.blockCount(); ++b)
   {
     writeBlock(this->Data, width, qt, frame, b, [](int, int) {});
-  }
-  for (int c = 0; c <= bc; ++c)
-  {
-    put(c, 3 * br + 1, static_cast<float>(qt.colStart[c]), 0.0f);
-  }
-  for (int r = 0; r <= br; ++r)
-  {
-    put(r, 3 * br + 2, static_cast<float>(qt.rowStart[r]), 0.0f);
   }
   this->Blocks[0] = bc;
   this->Blocks[1] = br;
@@ -171,6 +187,11 @@ std::string vtkGeoMipMapMorphTexture::Build(
   {
     return "geomorphing: the RG32F texture could not be created: drawn unmorphed";
   }
+  const std::string why = this->BuildSampleBands(win, qt);
+  if (!why.empty())
+  {
+    return why;
+  }
   this->Size[0] = width;
   this->Size[1] = height;
   this->Written = frame.blocks;
@@ -178,21 +199,56 @@ std::string vtkGeoMipMapMorphTexture::Build(
   return std::string();
 }
 
+std::string vtkGeoMipMapMorphTexture::BuildSampleBands(vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt)
+{
+  const int longest = std::max(qt.colStart.back(), qt.rowStart.back()) + 1;
+  int shift = 0;
+  while (shift < kMaxSampleBandsShift && (1 << shift) < longest)
+  {
+    ++shift;
+  }
+  const int rowTexels = 1 << shift;
+  std::vector<float> bands;
+  appendSampleBands(qt.colStart, rowTexels, bands);
+  const int columnRows = static_cast<int>(bands.size() / (4 * static_cast<size_t>(rowTexels)));
+  appendSampleBands(qt.rowStart, rowTexels, bands);
+  const int rows = static_cast<int>(bands.size() / (4 * static_cast<size_t>(rowTexels)));
+  const int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
+  if (rowTexels > maxSize || rows > maxSize)
+  {
+    return "geomorphing needs a " + std::to_string(rowTexels) + " x " + std::to_string(rows) +
+      " texture of block bands, more than GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize) + ": drawn unmorphed";
+  }
+  this->SampleBands->SetContext(win);
+  if (!this->SampleBands->Create2DFromRaw(rowTexels, rows, 4, VTK_FLOAT, bands.data()))
+  {
+    return "geomorphing: the RGBA32F texture of block bands could not be created: drawn unmorphed";
+  }
+  this->SampleBandsLayout[0] = shift;
+  this->SampleBandsLayout[1] = columnRows;
+  this->BandBytes = bands.size() * sizeof(float);
+  return std::string();
+}
+
 bool vtkGeoMipMapMorphTexture::HasData() const
 {
-  return this->Texture->GetHandle() != 0 && this->Blocks[0] > 0;
+  return this->Texture->GetHandle() != 0 && this->SampleBands->GetHandle() != 0 && this->Blocks[0] > 0;
 }
 
 void vtkGeoMipMapMorphTexture::Activate()
 {
   this->Texture->Activate();
   this->Unit = this->Texture->GetTextureUnit();
+  this->SampleBands->Activate();
+  this->BandsUnit = this->SampleBands->GetTextureUnit();
 }
 
 void vtkGeoMipMapMorphTexture::Deactivate()
 {
   this->Texture->Deactivate();
+  this->SampleBands->Deactivate();
   this->Unit = -1;
+  this->BandsUnit = -1;
 }
 
 void vtkGeoMipMapMorphTexture::SetUniforms(vtkShaderProgram* p) const
@@ -205,11 +261,20 @@ void vtkGeoMipMapMorphTexture::SetUniforms(vtkShaderProgram* p) const
   {
     p->SetUniform2i("gmmMorphLayout", this->Blocks);
   }
+  if (p->IsUniformUsed("gmmSampleBands"))
+  {
+    p->SetUniformi("gmmSampleBands", this->BandsUnit);
+  }
+  if (p->IsUniformUsed("gmmSampleBandsLayout"))
+  {
+    p->SetUniform2i("gmmSampleBandsLayout", this->SampleBandsLayout);
+  }
 }
 
 void vtkGeoMipMapMorphTexture::Release(vtkWindow* win)
 {
   this->Texture->ReleaseGraphicsResources(win);
+  this->SampleBands->ReleaseGraphicsResources(win);
   this->Blocks[0] = this->Blocks[1] = 0;
 }
 

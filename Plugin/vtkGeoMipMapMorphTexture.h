@@ -2,15 +2,21 @@
  * @file   vtkGeoMipMapMorphTexture.h
  * @brief  The per-frame geomorph data of vtkGeoMipMapMapper on the GPU (Morph.h).
  *
- * One RG32F 2D texture, texel = (target level, factor) of a block or a shared edge, plus
- * the block band starts, so that the vertex shader (vtkGeoMipMapShaders.h) moves a vertex
- * exactly as gmm::morphedHeight does, from its sample (i, j) alone:
- *   rows [0, br):          blocks (c, r)
- *   rows [br, 2 br):       vertical edges (line 0..bc, r)
- *   rows [2 br, 3 br + 1): horizontal edges (c, line 0..br)
- *   row 3 br + 1:          colStart (bc + 1 values), row 3 br + 2: rowStart (br + 1)
- * with bc x br blocks. It is the only data uploaded per frame for morphing (a few bytes
- * per block); nothing per vertex. Lives in one OpenGL context.
+ * Two textures, so that the vertex shader (vtkGeoMipMapShaders.h) moves a vertex exactly
+ * as gmm::morphedHeight does, from its sample (i, j) alone:
+ * - gmmMorph, RG32F 2D, texel = (target level, factor) of a block or a shared edge:
+ *     rows [0, br):          blocks (c, r)
+ *     rows [br, 2 br):       vertical edges (line 0..bc, r)
+ *     rows [2 br, 3 br + 1): horizontal edges (c, line 0..br)
+ *   with bc x br blocks. It is the only data uploaded per frame for morphing (a few bytes
+ *   per block); nothing per vertex.
+ * - gmmSampleBands, RGBA32F 2D, made once per quadtree: the block band of every sample
+ *   column, then of every sample row, as (band, first sample, last sample), 2^w texels a
+ *   row, at most 64 (column i at (i mod 2^w, i >> w); row j likewise after the columns'
+ *   rows). One
+ *   fetch finds a vertex's band: the binary search over the band starts that it replaces
+ *   cost each vertex a loop of fetches, which llvmpipe runs to the longest lane.
+ * Lives in one OpenGL context.
  *
  * Per frame only the texels of the blocks drawn now or at the last upload (gmm::MorphFrame
  * ::blocks) and their edges are rewritten, and only each row's span of changed texels is
@@ -53,11 +59,11 @@ public:
   /** Binds a texture unit for a draw; Deactivate() after it. */
   void Activate();
   void Deactivate();
-  /** gmmMorph (the unit) and gmmMorphLayout (bc, br). */
+  /** gmmMorph, gmmSampleBands (the units), gmmMorphLayout (bc, br), gmmSampleBandsLayout. */
   void SetUniforms(vtkShaderProgram* program) const;
   void Release(vtkWindow* win);
   void Forget();
-  size_t GetBytes() const { return this->Data.size() * sizeof(float); }
+  size_t GetBytes() const { return this->Data.size() * sizeof(float) + this->BandBytes; }
   /** Bytes the last Update uploaded (0 when no texel changed). */
   size_t GetLastUploadBytes() const { return this->LastUploadBytes; }
 
@@ -66,14 +72,19 @@ private:
   void operator=(const vtkGeoMipMapMorphTexture&) = delete;
 
   std::string Build(vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt, const gmm::MorphFrame& frame);
+  std::string BuildSampleBands(vtkOpenGLRenderWindow* win, const gmm::Quadtree& qt);
 
   vtkNew<vtkTextureObject> Texture;
+  vtkNew<vtkTextureObject> SampleBands;
+  int SampleBandsLayout[2] = { 0, 0 }; // log2 texels a row, rows of the column entries
+  size_t BandBytes = 0;
   std::vector<float> Data;
   std::vector<int> Written; // the blocks whose texels the last upload set from a frame
   std::vector<int> SpanLo, SpanHi; // per row, the texels an Update changed (scratch)
   int Blocks[2] = { 0, 0 };
   int Size[2] = { 0, 0 };
   int Unit = -1;
+  int BandsUnit = -1;
   size_t LastUploadBytes = 0;
 };
 

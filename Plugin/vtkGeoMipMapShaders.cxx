@@ -194,19 +194,21 @@ const char* const kDrape =
   "vec4 gmmDrapeColor() { return texture(gmmDrape, gmmGridVSOutput * gmmDrapeMap.xy + gmmDrapeMap.zw); }\n";
 
 // Geomorphing in the vertex shader, mirroring gmm::morphedHeight (Morph.cpp) line by line:
-// the block of sample (i, j) by binary search over the band starts, then the edge or the
-// block it lies on, its target level and factor, and the target: the edge polyline at that
-// level, or the block's cell at that level split as Tessellate splits it.
+// the block of sample (i, j) from its column's and row's entries in gmmSampleBands (the
+// band search of Morph.cpp's bandOf, tabulated: vtkGeoMipMapMorphTexture.h), then the edge
+// or the block it lies on, its target level and factor, and the target: the edge polyline
+// at that level, or the block's cell at that level split as Tessellate splits it.
 const char* const kMorph =
   "uniform highp sampler2D gmmMorph;\n"
   "uniform ivec2 gmmMorphLayout; // block columns, rows\n"
+  "uniform highp sampler2D gmmSampleBands;\n"
+  "uniform ivec2 gmmSampleBandsLayout; // log2 texels a row, rows of the column entries\n"
   "vec2 gmmMorphAt(int x, int y) { return texelFetch(gmmMorph, ivec2(x, y), 0).rg; }\n"
-  "int gmmStart(int row, int k) { return int(texelFetch(gmmMorph, ivec2(k, row), 0).r); }\n"
-  "int gmmBand(int row, int bands, int s)\n"
+  "// (band, first sample, last sample) of sample s along columns (rows0 = 0) or rows.\n"
+  "ivec3 gmmBandOf(int s, int rows0)\n"
   "{\n"
-  "  int lo = 0, hi = bands - 1;\n"
-  "  while (lo < hi) { int mid = (lo + hi + 1) >> 1; if (gmmStart(row, mid) <= s) lo = mid; else hi = mid - 1; }\n"
-  "  return lo;\n"
+  "  int w = gmmSampleBandsLayout.x;\n"
+  "  return ivec3(texelFetch(gmmSampleBands, ivec2(s & ((1 << w) - 1), rows0 + (s >> w)), 0).xyz);\n"
   "}\n"
   "float gmmLerp(float a, float b, float w) { return a + w * (b - a); }\n"
   "float gmmPolyline(int first, int last, int level, int s, ivec2 fixedAxis, bool alongI)\n"
@@ -238,10 +240,9 @@ const char* const kMorph =
   "}\n"
   "float gmmMorphHeight(ivec2 ij, float h)\n"
   "{\n"
-  "  int bc = gmmMorphLayout.x, br = gmmMorphLayout.y;\n"
-  "  int c = gmmBand(3 * br + 1, bc, ij.x), r = gmmBand(3 * br + 2, br, ij.y);\n"
-  "  int i0 = gmmStart(3 * br + 1, c), i1 = gmmStart(3 * br + 1, c + 1);\n"
-  "  int j0 = gmmStart(3 * br + 2, r), j1 = gmmStart(3 * br + 2, r + 1);\n"
+  "  int br = gmmMorphLayout.y;\n"
+  "  ivec3 cb = gmmBandOf(ij.x, 0), rb = gmmBandOf(ij.y, gmmSampleBandsLayout.y);\n"
+  "  int c = cb.x, i0 = cb.y, i1 = cb.z, r = rb.x, j0 = rb.y, j1 = rb.z;\n"
   "  bool onV = ij.x == i0 || ij.x == i1, onH = ij.y == j0 || ij.y == j1;\n"
   "  if (onV && onH) { return h; }\n"
   "  vec2 d;\n"

@@ -1,7 +1,8 @@
 """vtkGeoMipMapMapper.Geomorphing: the vertex shader moves vertices exactly as the engine
 does (issue #13).
 
-A 257^2 fractal terrain at tau 2, block 32, seen low and oblique so that many blocks are
+A 257 x 193 fractal terrain (not square: columns and rows have different block bands) at
+tau 2, block 32, seen low and oblique so that many blocks are
 part-way through their morph. The mapper's depth buffer is compared with that of a stock
 vtkPolyDataMapper drawing vtkGeoMipMapFilter's mesh for the same camera: with geomorphing
 on (the default) the filter outputs the morphed heights gmm::morphedHeight computes on the
@@ -24,7 +25,7 @@ W, H = 480, 320
 TAU, BLOCK = 2.0, 32
 check = refscene.Checks()
 
-image = refscene.fractal_image(257, 257, seed=5)
+image = refscene.fractal_image(257, 193, seed=5)
 
 
 def new_mapper():
