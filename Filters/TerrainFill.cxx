@@ -47,7 +47,7 @@ int CPL_STDCALL gdalProgress(double fraction, const char*, void* data)
 }
 } // namespace
 
-std::string fillNodata(std::vector<float>& z, int nx, int ny, double searchDistance,
+std::string fillNodata(HeightBuffer& z, int nx, int ny, double searchDistance,
   int smoothingIterations, const std::vector<unsigned char>* inside,
   std::vector<unsigned char>& filled, const std::function<void(double)>& progress)
 {

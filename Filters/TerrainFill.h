@@ -5,6 +5,8 @@
 // through an in-memory (MEM driver) GDAL dataset that points at it.
 #pragma once
 
+#include "HeightBuffer.h"
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -31,7 +33,7 @@ double fillMemoryBytes(double nx, double ny, int smoothingIterations);
 // outside the data's footprint, left NaN). filled: set to nx x ny, 1 where a NaN sample
 // was filled, else 0. progress(fraction) is called now and then. Returns "" or a sentence
 // saying what went wrong.
-std::string fillNodata(std::vector<float>& z, int nx, int ny, double searchDistance,
+std::string fillNodata(HeightBuffer& z, int nx, int ny, double searchDistance,
   int smoothingIterations, const std::vector<unsigned char>* inside,
   std::vector<unsigned char>& filled, const std::function<void(double)>& progress);
 

@@ -91,7 +91,7 @@ std::string geoGrid(TerrainRaster& r, bool withHeights, std::vector<unsigned cha
   {
     return std::string();
   }
-  std::vector<float> src;
+  HeightBuffer src;
   src.swap(r.z);
   r.z.assign(static_cast<std::size_t>(nx) * ny, kNaN);
   if (inside)

@@ -5,7 +5,6 @@
 #include "TerrainGeographic.h" // geoGrid
 
 #include "Heightfield.h" // gmm::kMaxHeight
-#include "HugePages.h"   // gmm::resizeOnHugePages
 
 #include <GeographicLib/Constants.hpp>
 #include <GeographicLib/Ellipsoid.hpp>
@@ -362,8 +361,18 @@ std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions&
   const double offset = (hasOffset ? bandOffset : 0.0) * unitToMetre * opt.heightScale + opt.heightOffset;
 
   const int nx = out.nx, ny = out.ny;
-  gmm::resizeOnHugePages(out.z, static_cast<std::size_t>(nx) * ny);
-  const int chunk = std::max(1, std::min(ny, (1 << 22) / nx));
+  out.z.assign(static_cast<std::size_t>(nx) * ny);
+  // Chunks of about 4 M samples. GDAL's cache is flushed once a chunk has consumed whole
+  // rows of the file's blocks (a block flushed before it is used up would be decoded
+  // again): chunks are whole block rows where blocks are shorter than a chunk.
+  int blockX = 0, blockY = 0;
+  GDALGetBlockSize(band, &blockX, &blockY);
+  blockY = std::max(1, std::min(blockY, ny));
+  int chunk = std::max(1, std::min(ny, (1 << 22) / nx));
+  if (blockY <= chunk)
+  {
+    chunk = chunk / blockY * blockY;
+  }
   std::vector<float> buf(static_cast<std::size_t>(chunk) * nx);
   for (int r0 = 0; r0 < ny; r0 += chunk)
   {
@@ -385,6 +394,13 @@ std::string gdalRead(const Input& in, double fileSize, const TerrainReadOptions&
         const bool missing = !std::isfinite(v) || (hasNodata && v == nodataF);
         dst[flipCols ? nx - 1 - c : c] = missing ? kNaN : toHeight(scale * v + offset);
       }
+    }
+    // Drop the blocks GDAL cached for this chunk once they are used up: they are in out.z
+    // now, and the cache (5 % of the machine's memory by default) would otherwise add up
+    // to a second copy of a large DEM at the read's peak.
+    if ((r0 + rows) % blockY == 0 || r0 + rows == ny)
+    {
+      GDALFlushRasterCache(band);
     }
     (*progress)(static_cast<double>(r0 + rows) / ny);
   }
@@ -474,7 +490,7 @@ std::string oiioRead(const Input& file, double fileSize, const TerrainReadOption
   }
   const int nx = out.nx, ny = out.ny;
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  gmm::resizeOnHugePages(out.z, n);
+  out.z.assign(n);
   const double scale = opt.heightScale, offset = opt.heightOffset;
   const TypeDesc f = spec.format;
   const bool isFloat = f == TypeDesc::HALF || f == TypeDesc::FLOAT || f == TypeDesc::DOUBLE;
@@ -573,7 +589,7 @@ std::string readAny(const Input& in, const TerrainReadOptions& opt, TerrainRaste
   }
   catch (const std::bad_alloc&)
   {
-    out.z = std::vector<float>();
+    out.z.clear();
     return "needs more memory than is available";
   }
 }
@@ -611,7 +627,7 @@ std::string readAndGrid(const Input& in, const TerrainReadOptions& opt, TerrainR
   }
   catch (const std::bad_alloc&)
   {
-    out.z = std::vector<float>();
+    out.z.clear();
     out.filled = std::vector<unsigned char>();
     problem = "needs more memory than is available";
   }

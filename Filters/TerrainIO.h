@@ -5,6 +5,8 @@
 // one place; the reader only copies the result into a vtkImageData.
 #pragma once
 
+#include "HeightBuffer.h"
+
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -44,7 +46,7 @@ struct TerrainRaster
   double lon0 = 0.0, lat0 = 0.0;
   double centralMeridian = 0.0;
   double lonStep = 0.0, latStep = 0.0;
-  std::vector<float> z;          // nx * ny, row j = northwards, NaN = nodata
+  HeightBuffer z;                // nx * ny, row j = northwards, NaN = nodata
   std::vector<unsigned char> filled; // fillNodata only: nx * ny, 1 where a void was filled
 };
 

@@ -14,7 +14,6 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "HugePages.h"         // gmm::adviseHugePages
 #include "TerrainFill.h"       // checkFillOptions, fillMemoryBytes
 #include "TerrainGeographic.h" // geographicToLocal, localToGeographic
 #include "TerrainIO.h"
@@ -122,6 +121,9 @@ int vtkGeoMipMapTerrainReader::RequestData(
     if (gmm::readTerrainHeader(name, this->Internal->Options(this), header).empty())
     {
       const double samples = static_cast<double>(header.nx) * header.ny;
+      // The heights (the output adopts them), as much again for an image format's decoded
+      // image (OpenImageIO reads it whole) or GDAL's blocks, and the source lattice when
+      // resampling a geographic raster: conservative for GDAL rasters, read in chunks.
       const double need = samples * sizeof(float) * (header.geographic ? 3.0 : 2.0) +
         (this->FillNodata
             ? gmm::fillMemoryBytes(header.nx, header.ny, this->FillSmoothingIterations)
@@ -150,14 +152,13 @@ int vtkGeoMipMapTerrainReader::RequestData(
   output->SetExtent(0, raster.nx - 1, 0, raster.ny - 1, 0, 0);
   output->SetSpacing(raster.dx, raster.dy, 1.0);
   output->SetOrigin(raster.x0, raster.y0, 0.0);
-  vtkNew<vtkFloatArray> heights;
-  heights->SetName("Elevation");
-  heights->SetNumberOfTuples(static_cast<vtkIdType>(raster.z.size()));
-  gmm::adviseHugePages(heights->GetPointer(0), raster.z.size() * sizeof(float));
-  std::memcpy(heights->GetPointer(0), raster.z.data(), raster.z.size() * sizeof(float));
   const bool anyValid =
     std::any_of(raster.z.begin(), raster.z.end(), [](float z) { return std::isfinite(z); });
-  raster.z = std::vector<float>(); // release before the field data is built
+  vtkNew<vtkFloatArray> heights;
+  heights->SetName("Elevation");
+  // The array adopts the heights' memory (HeightBuffer.h): no second copy of the DEM.
+  const vtkIdType count = static_cast<vtkIdType>(raster.z.size());
+  heights->SetArray(raster.z.release(), count, 0, vtkFloatArray::VTK_DATA_ARRAY_FREE);
   if (!anyValid)
   {
     // Not an error (a tile of a larger DEM may be all void), but nothing will be drawn.

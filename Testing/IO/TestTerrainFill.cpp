@@ -41,7 +41,7 @@ const float kNaN = std::numeric_limits<float>::quiet_NaN();
 struct Grid
 {
   int nx = 0, ny = 0;
-  std::vector<float> z;
+  gmm::HeightBuffer z;
   float& at(int i, int j) { return z[static_cast<std::size_t>(j) * nx + i]; }
 };
 
@@ -52,7 +52,7 @@ Grid holes(int nx, int ny, const std::function<double(int, int)>& f,
   Grid g;
   g.nx = nx;
   g.ny = ny;
-  g.z.resize(static_cast<std::size_t>(nx) * ny);
+  g.z.assign(static_cast<std::size_t>(nx) * ny);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
     {
@@ -266,12 +266,12 @@ TEST(TerrainFill, InsideMaskKeepsTheOutsideNaN)
 TEST(TerrainFill, NothingToFillOrNothingToFillFrom)
 {
   Grid full = holes(16, 12, plane, {});
-  const std::vector<float> was = full.z;
+  const gmm::HeightBuffer was = full.z;
   std::vector<unsigned char> filled;
   ASSERT_EQ(gmm::fillNodata(full.z, full.nx, full.ny, 5.0, 0, nullptr, filled, kNoProgress), "");
   EXPECT_EQ(std::memcmp(was.data(), full.z.data(), was.size() * sizeof(float)), 0);
   EXPECT_EQ(std::count(filled.begin(), filled.end(), 1), 0);
-  std::vector<float> empty(16 * 12, kNaN);
+  gmm::HeightBuffer empty(16 * 12, kNaN);
   ASSERT_EQ(gmm::fillNodata(empty, 16, 12, 5.0, 0, nullptr, filled, kNoProgress), "");
   EXPECT_TRUE(std::all_of(empty.begin(), empty.end(), [](float v) { return std::isnan(v); }));
   EXPECT_EQ(std::count(filled.begin(), filled.end(), 1), 0);
