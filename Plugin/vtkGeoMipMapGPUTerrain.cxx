@@ -45,7 +45,9 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     vtkGeoMipMapSharedHeights::Usable(win);
   // MaximumTileSize bounds a band's texels as it bounds a layer's (tests use it for many bands).
   const vtkIdType maxBand = in.MaximumTileSize > 0 ? vtkIdType(in.MaximumTileSize) * in.MaximumTileSize : 0;
-  if (r.HeightsError.empty() && share && !this->Shared.IsCurrent(in.Heights, heightFormat, maxBand))
+  const ShareAttempt attempt{ in.Heights, in.Heights->GetMTime(), static_cast<int>(heightFormat), maxBand };
+  if (r.HeightsError.empty() && share && !this->Shared.IsCurrent(in.Heights, heightFormat, maxBand) &&
+    !(attempt == this->FailedShare))
   {
     const auto start = std::chrono::steady_clock::now();
     const std::string why =
@@ -55,6 +57,11 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     if (why.empty())
     {
       this->Heights.Release(win);
+    }
+    else
+    {
+      this->FailedShare = attempt;
+      r.ShareError = why;
     }
   }
   if (!(share && this->Shared.HasData()))
@@ -263,6 +270,7 @@ void vtkGeoMipMapGPUTerrain::Release(vtkWindow* win)
 {
   this->Heights.Release(win);
   this->Shared.Release(win);
+  this->FailedShare = ShareAttempt(); // another context may share them
   this->Slopes.Release(win);
   this->Colors.Release(win);
   this->Table.Release(win);
@@ -273,6 +281,7 @@ void vtkGeoMipMapGPUTerrain::Forget()
 {
   this->Heights.Forget();
   this->Shared.Forget();
+  this->FailedShare = ShareAttempt();
   this->Slopes.Forget();
   this->Colors.Forget();
 }

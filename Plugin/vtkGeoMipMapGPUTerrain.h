@@ -57,6 +57,7 @@ public:
     std::string HeightsError; // the heights (or slopes) could not be stored: do not draw
     std::string ColorError;   // the colouring array could not be stored: actor's colour
     std::string DrapeError;   // the drape could not be stored: drawn without it
+    std::string ShareError;   // the heights could not be read in place: a texture holds them
     int Uploads = 0;          // arrays uploaded (heights, colouring)
     double UploadSeconds = 0.0;
   };
@@ -91,6 +92,19 @@ private:
   vtkGeoMipMapTileLayout Layout;
   vtkGeoMipMapSampleTexture Heights;
   vtkGeoMipMapSharedHeights Shared; // instead of Heights, where it applies
+  // The heights whose sharing failed (array, its MTime, format, band limit): not tried again
+  // every frame, and reported once.
+  struct ShareAttempt
+  {
+    vtkDataArray* Source = nullptr;
+    vtkMTimeType Time = 0;
+    int Format = -1;
+    vtkIdType MaxBand = -1;
+    bool operator==(const ShareAttempt& o) const
+    {
+      return Source == o.Source && Time == o.Time && Format == o.Format && MaxBand == o.MaxBand;
+    }
+  } FailedShare;
   std::vector<int> BandUnits;
   vtkGeoMipMapSampleTexture Slopes;
   vtkGeoMipMapSampleTexture Colors;

@@ -729,6 +729,11 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   {
     this->LastHeightUploadTime = r.UploadSeconds;
   }
+  if (!r.ShareError.empty())
+  {
+    vtkWarningMacro("Cannot read the heights in place (ShareHeights): " << r.ShareError
+                                                                       << "; they are copied into a texture instead.");
+  }
   if (!r.HeightsError.empty())
   {
     vtkErrorMacro("Cannot store the heights on the GPU: " << r.HeightsError);

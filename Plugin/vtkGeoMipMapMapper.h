@@ -187,8 +187,11 @@ public:
    * renderer runs on the CPU (Mesa llvmpipe or softpipe) and offers GL_AMD_pinned_memory:
    * no upload, and the DEM is held once instead of twice (a 16385^2 float DEM: 1 GiB and
    * about 4.6 s less at the first render on the benchmark VM). Float and 16-bit integer
-   * heights only; other types, and GPUs with their own memory, use the texture. The
-   * picture is the same either way. On by default.
+   * heights only; other types, and GPUs with their own memory, use the texture. Where
+   * sharing is possible but fails (more than 16 buffer textures of
+   * GL_MAX_TEXTURE_BUFFER_SIZE samples, or OpenGL refuses the memory), the texture is used
+   * too and a warning says why, once per array and context. The picture is the same
+   * either way. On by default.
    */
   vtkSetMacro(ShareHeights, bool);
   vtkGetMacro(ShareHeights, bool);

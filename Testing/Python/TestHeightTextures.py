@@ -28,7 +28,9 @@ The texture-path cases run with ShareHeights off, as on a GPU with its own memor
 """
 
 import numpy as np
+from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand, vtkLookupTable
 from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkPolyDataMapper, vtkRenderer
 
@@ -172,6 +174,28 @@ for name, z in (("float32", np.round(zf).astype(np.float32)), ("int16", zi), ("u
             check(not ms.GetHeightsShared() and same,
                   f"{name} heights on a GPU with its own memory: a texture, as without ShareHeights")
 
+# Heights that cannot be read in place (more bands than the shader takes: a band holds
+# MaximumTileSize^2 texels, here 16^2, so the DEM needs 47 bands of 16 at most) are copied
+# into a texture instead, with one warning that says why, not one a frame.
+if on_cpu:
+    img = refscene.image_from_heights(np.round(zf).astype(np.float32))
+    mt, at = ours(img, MaximumTileSize=16)
+    texture = frame(at)
+    texture_depth = refscene.depth(win)
+    ms, as_ = ours(img, MaximumTileSize=16, ShareHeights=True)
+    warnings = []
+    as_.GetMapper().AddObserver(vtkCommand.WarningEvent,
+                                calldata_type(VTK_STRING)(lambda o, e, t=None: warnings.append(t)))
+    shared = frame(as_)
+    same = np.array_equal(texture, shared) and np.array_equal(texture_depth, refscene.depth(win))
+    ren.GetActiveCamera().Azimuth(10.0)  # a second frame of the same actor (frame() would
+    win.Render()                         # remove it, which releases its GPU resources)
+    text = " ".join(t for t in warnings if t)
+    check(not ms.GetHeightsShared() and same and len(warnings) == 1 and "ShareHeights" in text and
+          "buffer textures" in text,
+          f"heights in 47 bands: in a texture instead, the same picture ({same}), one warning over "
+          f"two frames ({len(warnings)}: {text[:140]!r})")
+
 # Slopes computed per fragment from the heights (SlopeTexture off, the default): the slope
 # texture's picture but for its half-float rounding (and, on one layer, its bilinear
 # filtering), with a nodata hole too (one-sided differences beside it), the heights read in
@@ -245,8 +269,6 @@ def on_error(obj, event, text=None):
     errors.append(text)
 
 
-from vtkmodules.util.misc import calldata_type  # noqa: E402
-from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 
 on_error = calldata_type(VTK_STRING)(on_error)
 m.AddObserver(vtkCommand.ErrorEvent, on_error)
