@@ -99,7 +99,8 @@ std::string vtkGeoMipMapMorphTexture::Update(
   textureSize(qt, width, height);
   const bool sameLayout = this->Blocks[0] == bc && this->Blocks[1] == br && this->Size[0] == width &&
     this->Size[1] == height && this->Texture->GetHandle() != 0 && this->Texture->GetContext() == win &&
-    this->SampleBands->GetHandle() != 0 && frame.blockT.size() == static_cast<size_t>(bc) * br;
+    this->SampleBands->GetHandle() != 0 && frame.blockT.size() == static_cast<size_t>(bc) * br &&
+    this->ColStart == qt.colStart && this->RowStart == qt.rowStart; // another DEM, same block grid
   if (!sameLayout)
   {
     return this->Build(win, qt, frame);
@@ -226,6 +227,8 @@ std::string vtkGeoMipMapMorphTexture::BuildSampleBands(vtkOpenGLRenderWindow* wi
   }
   this->SampleBandsLayout[0] = shift;
   this->SampleBandsLayout[1] = columnRows;
+  this->ColStart = qt.colStart;
+  this->RowStart = qt.rowStart;
   this->BandBytes = bands.size() * sizeof(float);
   return std::string();
 }

@@ -77,6 +77,7 @@ private:
   vtkNew<vtkTextureObject> Texture;
   vtkNew<vtkTextureObject> SampleBands;
   int SampleBandsLayout[2] = { 0, 0 }; // log2 texels a row, rows of the column entries
+  std::vector<int> ColStart, RowStart;  // the band starts gmmSampleBands was made from
   size_t BandBytes = 0;
   std::vector<float> Data;
   std::vector<int> Written; // the blocks whose texels the last upload set from a frame

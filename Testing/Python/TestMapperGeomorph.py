@@ -186,6 +186,29 @@ ren.RemoveAllViewProps()
 ren.AddActor(actor)
 cam.SetPosition(*start)
 
+# Another DEM on the same mapper with the same block grid (8 x 8 blocks) but other band
+# starts (250 x 190 samples): the morph textures must follow the new quadtree, with no
+# release of the mapper's GPU resources in between.
+image2 = refscene.fractal_image(250, 190, seed=6)
+win.Render()  # image's quadtree in the morph textures
+mapper.SetInputData(image2)
+win.Render()
+gpu2 = refscene.depth(win)
+f2 = geomipmap.vtkGeoMipMapFilter()
+f2.SetInputData(image2)
+f2.SetViewportSize(W, H)
+f2.SetPixelError(TAU)
+f2.SetBlockSize(BLOCK)
+f2.SetCamera(cam)
+f2.Update()
+cpu2 = depth_of(refscene.stock_actor(f2.GetOutput()))
+seen2 = cpu2 < 1.0
+off2 = np.count_nonzero(np.abs(gpu2 - cpu2)[seen2] > eps)
+check(np.count_nonzero(seen2) > 0.3 * W * H and off2 <= 0.002 * np.count_nonzero(seen2),
+      f"a 250 x 190 DEM on the same mapper (same block grid, other bands): GPU morph = CPU "
+      f"morph ({off2} of {np.count_nonzero(seen2)} pixels differ in depth)")
+mapper.SetInputData(image)
+
 mapper.GeomorphingOff()
 win.Render()
 gpu_plain = refscene.depth(win)
