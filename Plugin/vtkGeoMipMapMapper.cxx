@@ -677,7 +677,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     // A frame that built tables or uploaded heights says nothing about the cost of drawing.
     if (this->NumberOfHeightUploads == heightUploadsBefore && this->LastTerrainBuildTime == buildTimeBefore)
     {
-      in.Controller.observe(this->LastRenderTime, stats.triangles);
+      in.Controller.observe(this->LastRenderTime, stats.triangles, stats.budgetReached);
     }
   }
 }

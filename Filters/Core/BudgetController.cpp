@@ -37,9 +37,9 @@ const char* BudgetController::setSettings(const Settings& s)
   {
     return "hysteresis must be in [0, 1)";
   }
-  if (!(s.maxGrowth > 1.0 && std::isfinite(s.maxGrowth)))
+  if (!(s.maxGrowth > 1.0 && std::isfinite(s.maxGrowth) && s.nearGrowth > 1.0 && s.nearGrowth <= s.maxGrowth))
   {
-    return "maxGrowth must be finite and > 1";
+    return "growth must satisfy 1 < nearGrowth <= maxGrowth, finite";
   }
   if (s.window < 3 || s.window > 64 || s.slopeWindow < 1 || s.slopeWindow > s.window)
   {
@@ -57,6 +57,7 @@ void BudgetController::reset()
   fixed_ = perTriangle_ = 0.0;
   frames_ = 0;
   lastTriangles_ = 0;
+  lastReached_ = false;
 }
 
 const BudgetController::Frame& BudgetController::recent(int k) const
@@ -65,7 +66,7 @@ const BudgetController::Frame& BudgetController::recent(int k) const
   return ring_[static_cast<std::size_t>(((frames_ - 1 - k) % w + w) % w)];
 }
 
-void BudgetController::observe(double seconds, std::size_t triangles)
+void BudgetController::observe(double seconds, std::size_t triangles, bool budgetReached)
 {
   if (!(std::isfinite(seconds) && seconds >= 0.0) || triangles == 0)
   {
@@ -82,6 +83,7 @@ void BudgetController::observe(double seconds, std::size_t triangles)
   }
   ++frames_;
   lastTriangles_ = triangles;
+  lastReached_ = budgetReached;
   fit();
 }
 
@@ -147,7 +149,13 @@ std::size_t BudgetController::budgetFor(double seconds)
     return budget_;
   }
   double want = (seconds - fixed_) / perTriangle_;
-  want = std::min(want, static_cast<double>(lastTriangles_) * settings_.maxGrowth);
+  // Growth: fast far below the target, slow near it, from what the last frame could use
+  // (see the header).
+  const double last = std::max(recent(0).seconds, 1e-9 * seconds);
+  const double growth = std::min(std::max(std::sqrt(seconds / last), settings_.nearGrowth), settings_.maxGrowth);
+  const double usable = lastReached_ ? std::max(static_cast<double>(lastTriangles_), static_cast<double>(budget_))
+                                     : static_cast<double>(lastTriangles_);
+  want = std::min(want, usable * growth);
   want = std::max(want, static_cast<double>(settings_.minBudget));
   want = std::min(want, static_cast<double>(settings_.maxBudget));
   budget_ = static_cast<std::size_t>(want);

@@ -20,11 +20,21 @@
 //
 // Hysteresis: the budget in force is kept while its predicted time is within
 // `hysteresis` (a fraction) of the target, so measurement noise does not make it
-// oscillate; when it moves, it moves to the predicted budget, but it grows at most to
-// `maxGrowth` times the triangles last drawn (a model learnt on small frames may
-// extrapolate badly, and a budget far above what tau lets the scene draw would allow one
-// very slow frame when the view changes) and drops as far as needed at once (a slow frame
-// is worse than a coarse one).
+// oscillate; when it moves, it moves to the predicted budget, and drops as far as needed
+// at once (a slow frame is worse than a coarse one), but grows at most by a factor of
+// sqrt(target / last frame's time), clamped to [nearGrowth, maxGrowth], of what the last
+// frame could use:
+// - the factor: a model learnt on small frames may extrapolate badly, and the cost per
+//   triangle moves with the view (on a Puget Sound orbit, 72 ms for 260 k triangles, then
+//   160 ms for 347 k); so near the target the budget creeps (nearGrowth, 1.25), while far
+//   below it it climbs fast (maxGrowth, 2: from 512 triangles to 300 k in 9 frames, not
+//   29). In five alternated runs of bench_budget.py's rate mode, 1.25 near the target held
+//   more frames within +-20 % than 2 (benchmarks-core.md, session 6);
+// - what the last frame could use: the triangles it drew, or the budget in force when the
+//   budget, not tau, stopped it (a refinement step that did not fit leaves the count below
+//   the budget, and growing from the count alone could stall there). Never more: a budget
+//   far above what tau lets the scene draw would allow one very slow frame when the view
+//   changes.
 //
 //   BudgetController c;
 //   std::size_t n = c.budgetFor(allocatedSeconds);  // before the frame
@@ -47,7 +57,8 @@ public:
     std::size_t minBudget = 512;
     std::size_t maxBudget = std::size_t(1) << 30;
     double hysteresis = 0.1; // keep the budget while predicted time is within 10 % of target
-    double maxGrowth = 2.0;  // at most x2 the triangles last drawn
+    double maxGrowth = 2.0;   // growth per frame far below the target
+    double nearGrowth = 1.25; // growth per frame near it (1 < nearGrowth <= maxGrowth)
     int window = 16;         // frames the fixed part is fitted on (3..64)
     int slopeWindow = 5;     // frames the cost per triangle is the median of (1..window)
   };
@@ -66,7 +77,8 @@ public:
   const Settings& settings() const { return settings_; }
 
   // Records a frame that took `seconds` (finite, >= 0) to draw `triangles`; others ignored.
-  void observe(double seconds, std::size_t triangles);
+  // budgetReached: the budget in force, not tau, stopped that frame's refinement.
+  void observe(double seconds, std::size_t triangles, bool budgetReached = false);
 
   // The budget for a frame that should take `seconds`; updates the budget in force. A
   // target that is not finite and > 0 leaves the budget as it is.
@@ -100,6 +112,7 @@ private:
   double fixed_ = 0.0, perTriangle_ = 0.0;
   int frames_ = 0;
   std::size_t lastTriangles_ = 0;
+  bool lastReached_ = false;
 };
 
 } // namespace gmm

@@ -109,6 +109,58 @@ TEST(BudgetController, ASceneNeedingFewerTrianglesDoesNotDisturbIt)
   EXPECT_LE(n, 40000u); // at most maxGrowth x what is drawn
 }
 
+TEST(BudgetController, CoarseRefinementStepsDoNotStallAGrowingBudget)
+{
+  // The selection refines in steps: here it draws the largest power of two within the
+  // budget, so a budget of 1 332 draws 1 024. Growth from the count drawn alone (by at
+  // most nearGrowth near the target) could stop below the next step; growth from the
+  // budget in force, when the budget stopped the frame, does not.
+  gmm::BudgetController::Settings s;
+  s.initialBudget = 600;
+  gmm::BudgetController c(s);
+  std::size_t n = c.budget(), drawn = 0;
+  for (int frame = 0; frame < 80; ++frame)
+  {
+    drawn = 1;
+    while (2 * drawn <= n)
+      drawn *= 2;
+    c.observe(cost(drawn), drawn, true);
+    const std::size_t before = c.budget();
+    n = c.budgetFor(0.040);
+    EXPECT_LE(static_cast<double>(n), c.settings().maxGrowth * std::max(drawn, before) + 1.0);
+  }
+  const std::size_t best = static_cast<std::size_t>((0.040 - 0.003) / 40e-9); // the most cost() allows
+  EXPECT_GT(drawn, best / 2) << "budget " << n << " stalled below the next refinement step";
+  EXPECT_LE(cost(drawn), 0.040 * 1.1);
+}
+
+TEST(BudgetController, GrowsFastFarBelowTheTargetAndSlowlyNearIt)
+{
+  gmm::BudgetController c;
+  std::size_t n = 1000;
+  c.observe(cost(n), n); // 3 ms against 400 ms: far below
+  n = c.budgetFor(0.400);
+  EXPECT_EQ(n, 2000u) << "far below the target: maxGrowth";
+  for (int frame = 0; frame < 40; ++frame)
+  {
+    c.observe(cost(n), n);
+    n = c.budgetFor(0.040);
+  }
+  // Settled at 40 ms. The scene gets cheaper (half the cost per triangle): the frames come
+  // in at about 22 ms, the model wants about 1.8x the triangles, but growth near the
+  // target is sqrt(40 / 22) = 1.35 at most (nearGrowth, 1.25, at least).
+  for (int frame = 0; frame < 8; ++frame)
+  {
+    const std::size_t before = n;
+    const double seconds = 0.003 + 20e-9 * static_cast<double>(n);
+    c.observe(seconds, n);
+    n = c.budgetFor(0.040);
+    const double growth = std::max(std::sqrt(0.040 / seconds), 1.25); // the default nearGrowth
+    EXPECT_LE(static_cast<double>(n), growth * before + 1.0);
+  }
+  EXPECT_NEAR(0.003 + 20e-9 * static_cast<double>(n), 0.040, 0.1 * 0.040);
+}
+
 TEST(BudgetController, BadInputIsIgnoredOrRefused)
 {
   gmm::BudgetController c;
