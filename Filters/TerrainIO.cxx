@@ -417,27 +417,66 @@ void greyRow(const T* src, int nx, double scale, double offset, float* dst)
   }
 }
 
-// Grey samples of type T (buf: ny rows of nx) to heights z.
+// Image rows [first, first + rows) (row 0 at the top: north), `rows` rows of nx samples
+// of type T in buf, to heights z (nx x ny, row j northwards: image row r is row ny - 1 - r).
 template <class T>
-void convertGrey(const unsigned char* buf, int nx, int ny, double scale, double offset, float* z)
+void convertGrey(const unsigned char* buf, int nx, int first, int rows, int ny, double scale,
+  double offset, float* z)
 {
   const T* src = reinterpret_cast<const T*>(buf);
-  for (int r = 0; r < ny; ++r) // image row 0 is the top (north): flip
+  for (int r = 0; r < rows; ++r)
   {
     greyRow(src + static_cast<std::size_t>(r) * nx, nx, scale, offset,
-      z + static_cast<std::size_t>(ny - 1 - r) * nx);
+      z + static_cast<std::size_t>(ny - 1 - (first + r)) * nx);
   }
 }
 
 // Half floats: converted to float (exactly) by OpenImageIO, a row at a time.
-void convertGreyHalf(const unsigned char* buf, int nx, int ny, double scale, double offset, float* z)
+void convertGreyHalf(const unsigned char* buf, int nx, int first, int rows, int ny,
+  double scale, double offset, float* z)
 {
   std::vector<float> row(static_cast<std::size_t>(nx));
-  for (int r = 0; r < ny; ++r)
+  for (int r = 0; r < rows; ++r)
   {
     OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, buf + static_cast<std::size_t>(r) * nx * 2,
       OIIO::TypeDesc::FLOAT, row.data(), nx);
-    greyRow(row.data(), nx, scale, offset, z + static_cast<std::size_t>(ny - 1 - r) * nx);
+    greyRow(row.data(), nx, scale, offset, z + static_cast<std::size_t>(ny - 1 - (first + r)) * nx);
+  }
+}
+
+// Terrain-RGB (Mapbox: height = (R * 65536 + G * 256 + B) / 10 - 10000 m), the same rows.
+void convertTerrainRGB(const unsigned char* buf, int nx, int first, int rows, int ny,
+  double scale, double offset, float* z)
+{
+  for (int r = 0; r < rows; ++r)
+  {
+    const unsigned char* p = buf + static_cast<std::size_t>(r) * nx * 3;
+    float* dst = z + static_cast<std::size_t>(ny - 1 - (first + r)) * nx;
+    for (int c = 0; c < nx; ++c, p += 3)
+    {
+      const double h = (p[0] * 65536.0 + p[1] * 256.0 + p[2]) / 10.0 - 10000.0;
+      dst[c] = toHeight(scale * h + offset);
+    }
+  }
+}
+
+// The converter of grey samples of `type`, or nullptr for a type heights cannot have.
+using GreyConverter = void (*)(const unsigned char*, int, int, int, int, double, double, float*);
+GreyConverter greyConverter(OIIO::TypeDesc::BASETYPE type)
+{
+  using OIIO::TypeDesc;
+  switch (type)
+  {
+    case TypeDesc::UINT8: return convertGrey<uint8_t>;
+    case TypeDesc::INT8: return convertGrey<int8_t>;
+    case TypeDesc::UINT16: return convertGrey<uint16_t>;
+    case TypeDesc::INT16: return convertGrey<int16_t>;
+    case TypeDesc::UINT32: return convertGrey<uint32_t>;
+    case TypeDesc::INT32: return convertGrey<int32_t>;
+    case TypeDesc::HALF: return convertGreyHalf;
+    case TypeDesc::FLOAT: return convertGrey<float>;
+    case TypeDesc::DOUBLE: return convertGrey<double>;
+    default: return nullptr;
   }
 }
 
@@ -489,8 +528,6 @@ std::string oiioRead(const Input& file, double fileSize, const TerrainReadOption
     return std::string();
   }
   const int nx = out.nx, ny = out.ny;
-  const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  out.z.assign(n);
   const double scale = opt.heightScale, offset = opt.heightOffset;
   const TypeDesc f = spec.format;
   const bool isFloat = f == TypeDesc::HALF || f == TypeDesc::FLOAT || f == TypeDesc::DOUBLE;
@@ -501,43 +538,33 @@ std::string oiioRead(const Input& file, double fileSize, const TerrainReadOption
   // EXR) are converted by OpenImageIO: to float, or to the integer type f.
   const bool mixed = !spec.channelformats.empty();
   const TypeDesc readAs = mixed && isFloat ? TypeDesc(TypeDesc::FLOAT) : f;
+  const GreyConverter grey = rgb ? nullptr : greyConverter(TypeDesc::BASETYPE(readAs.basetype));
+  if (!rgb && !grey)
+  {
+    return std::string("has an unsupported sample type (") + f.c_str() + ")";
+  }
+  out.z.assign(static_cast<std::size_t>(nx) * ny);
+  // Scanline images are decoded in chunks of about 4 M samples, so that the decoded image
+  // is never held whole beside the heights (a 16-bit PNG held it at 2 bytes a sample more);
+  // tiled ones (some TIFF and EXR files) whole, as OpenImageIO reads tiles.
   const int channels = rgb ? 3 : 1;
-  std::vector<unsigned char> buf(n * channels * readAs.size());
-  if (!in->read_image(0, 0, 0, channels, mixed ? readAs : TypeDesc(TypeDesc::UNKNOWN), buf.data()))
+  const bool chunked = spec.tile_width == 0;
+  const int chunk = chunked ? std::max(1, std::min(ny, (1 << 22) / nx)) : ny;
+  std::vector<unsigned char> buf(static_cast<std::size_t>(chunk) * nx * channels * readAs.size());
+  const TypeDesc format = mixed ? readAs : TypeDesc(TypeDesc::UNKNOWN);
+  for (int r0 = 0; r0 < ny; r0 += chunk)
   {
-    return "could not be decoded: truncated or corrupt (" + in->geterror() + ")";
-  }
-  (*progress)(0.8);
-  if (rgb)
-  {
-    for (int r = 0; r < ny; ++r)
+    const int rows = std::min(chunk, ny - r0);
+    const bool read = chunked
+      ? in->read_scanlines(0, 0, spec.y + r0, spec.y + r0 + rows, spec.z, 0, channels, format, buf.data())
+      : in->read_image(0, 0, 0, channels, format, buf.data());
+    if (!read)
     {
-      const unsigned char* p = buf.data() + static_cast<std::size_t>(r) * nx * 3;
-      float* dst = out.z.data() + static_cast<std::size_t>(ny - 1 - r) * nx;
-      for (int c = 0; c < nx; ++c, p += 3)
-      {
-        const double h = (p[0] * 65536.0 + p[1] * 256.0 + p[2]) / 10.0 - 10000.0;
-        dst[c] = toHeight(scale * h + offset);
-      }
+      return "could not be decoded: truncated or corrupt (" + in->geterror() + ")";
     }
+    (rgb ? convertTerrainRGB : grey)(buf.data(), nx, r0, rows, ny, scale, offset, out.z.data());
+    (*progress)(static_cast<double>(r0 + rows) / ny);
   }
-  else
-  {
-    switch (readAs.basetype)
-    {
-      case TypeDesc::UINT8: convertGrey<uint8_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT8: convertGrey<int8_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::UINT16: convertGrey<uint16_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT16: convertGrey<int16_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::UINT32: convertGrey<uint32_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::INT32: convertGrey<int32_t>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::HALF: convertGreyHalf(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::FLOAT: convertGrey<float>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      case TypeDesc::DOUBLE: convertGrey<double>(buf.data(), nx, ny, scale, offset, out.z.data()); break;
-      default: return std::string("has an unsupported sample type (") + f.c_str() + ")";
-    }
-  }
-  (*progress)(1.0);
   return std::string();
 }
 
