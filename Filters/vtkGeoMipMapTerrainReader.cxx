@@ -121,9 +121,10 @@ int vtkGeoMipMapTerrainReader::RequestData(
     if (gmm::readTerrainHeader(name, this->Internal->Options(this), header).empty())
     {
       const double samples = static_cast<double>(header.nx) * header.ny;
-      // The heights (the output adopts them), as much again for an image format's decoded
-      // image (OpenImageIO reads it whole) or GDAL's blocks, and the source lattice when
-      // resampling a geographic raster: conservative for GDAL rasters, read in chunks.
+      // The heights (the output adopts them), as much again for a tiled image's decoded
+      // image (OpenImageIO reads tiled files whole), and the source lattice when resampling
+      // a geographic raster: conservative for GDAL rasters and scanline images, which are
+      // read in chunks of a few MB.
       const double need = samples * sizeof(float) * (header.geographic ? 3.0 : 2.0) +
         (this->FillNodata
             ? gmm::fillMemoryBytes(header.nx, header.ny, this->FillSmoothingIterations)

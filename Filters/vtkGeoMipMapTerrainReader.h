@@ -167,7 +167,7 @@ public:
    * Memory, in bytes, a read may take (0, default: the memory available on this machine
    * now). Before reading the samples the reader estimates what the read needs (the
    * heights, which the output image adopts without a copy, as much again for the decoded
-   * image of an image format, once more for a geographic raster's resampling, and the
+   * image of a tiled image file, once more for a geographic raster's resampling, and the
    * masks and work rasters of void filling) and refuses a file that does not fit, with an
    * error naming the file, its size and the memory available.
    */
