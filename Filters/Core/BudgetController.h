@@ -28,8 +28,10 @@
 //   triangle moves with the view (on a Puget Sound orbit, 72 ms for 260 k triangles, then
 //   160 ms for 347 k); so near the target the budget creeps (nearGrowth, 1.25), while far
 //   below it it climbs fast (maxGrowth, 2: from 512 triangles to 300 k in 9 frames, not
-//   29). In five alternated runs of bench_budget.py's rate mode, 1.25 near the target held
-//   more frames within +-20 % than 2 (benchmarks-core.md, session 6);
+//   29). In six alternated runs of bench_budget.py's rate mode against a plain 2x cap it
+//   held more frames within +-20 % of the target on the real DEMs (72 against 61 %, 89
+//   against 86 %) and fewer on 4097² (85 against 91 %), all within the runs' spread
+//   (benchmarks-core.md, session 6);
 // - what the last frame could use: the triangles it drew, or the budget in force when the
 //   budget, not tau, stopped it (a refinement step that did not fit leaves the count below
 //   the budget, and growing from the count alone could stall there). Never more: a budget
