@@ -45,9 +45,9 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     vtkGeoMipMapSharedHeights::Usable(win);
   // MaximumTileSize bounds a band's texels as it bounds a layer's (tests use it for many bands).
   const vtkIdType maxBand = in.MaximumTileSize > 0 ? vtkIdType(in.MaximumTileSize) * in.MaximumTileSize : 0;
-  const ShareAttempt attempt{ in.Heights, in.Heights->GetMTime(), static_cast<int>(heightFormat), maxBand };
+  // A share that failed is not tried again every frame (Failed), and is reported once.
   if (r.HeightsError.empty() && share && !this->Shared.IsCurrent(in.Heights, heightFormat, maxBand) &&
-    !(attempt == this->FailedShare))
+    !this->Shared.Failed(in.Heights, heightFormat, maxBand))
   {
     const auto start = std::chrono::steady_clock::now();
     const std::string why =
@@ -60,12 +60,13 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     }
     else
     {
-      this->FailedShare = attempt;
       r.ShareError = why;
     }
   }
-  if (!(share && this->Shared.HasData()))
+  if (!share)
   {
+    // Not to be shared (ShareHeights off, a GPU, another format). When sharing is wanted
+    // but failed, nothing is held and the failed attempt is remembered (Failed).
     this->Shared.Release(win);
   }
   if (r.HeightsError.empty() && !this->Shared.HasData() &&
@@ -270,7 +271,6 @@ void vtkGeoMipMapGPUTerrain::Release(vtkWindow* win)
 {
   this->Heights.Release(win);
   this->Shared.Release(win);
-  this->FailedShare = ShareAttempt(); // another context may share them
   this->Slopes.Release(win);
   this->Colors.Release(win);
   this->Table.Release(win);
@@ -281,7 +281,6 @@ void vtkGeoMipMapGPUTerrain::Forget()
 {
   this->Heights.Forget();
   this->Shared.Forget();
-  this->FailedShare = ShareAttempt();
   this->Slopes.Forget();
   this->Colors.Forget();
 }

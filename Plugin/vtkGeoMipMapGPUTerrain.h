@@ -92,19 +92,6 @@ private:
   vtkGeoMipMapTileLayout Layout;
   vtkGeoMipMapSampleTexture Heights;
   vtkGeoMipMapSharedHeights Shared; // instead of Heights, where it applies
-  // The heights whose sharing failed (array, its MTime, format, band limit): not tried again
-  // every frame, and reported once.
-  struct ShareAttempt
-  {
-    vtkDataArray* Source = nullptr;
-    vtkMTimeType Time = 0;
-    int Format = -1;
-    vtkIdType MaxBand = -1;
-    bool operator==(const ShareAttempt& o) const
-    {
-      return Source == o.Source && Time == o.Time && Format == o.Format && MaxBand == o.MaxBand;
-    }
-  } FailedShare;
   std::vector<int> BandUnits;
   vtkGeoMipMapSampleTexture Slopes;
   vtkGeoMipMapSampleTexture Colors;

@@ -43,15 +43,38 @@ bool vtkGeoMipMapSharedHeights::SharesFormat(vtkDataArray* a, vtkGeoMipMapSample
 vtkGeoMipMapSharedHeights::vtkGeoMipMapSharedHeights() = default;
 vtkGeoMipMapSharedHeights::~vtkGeoMipMapSharedHeights() = default;
 
+vtkGeoMipMapSharedHeights::Attempt vtkGeoMipMapSharedHeights::AttemptOf(
+  vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format, vtkIdType maxBandTexels)
+{
+  return Attempt{ array, array->GetMTime(), format, maxBandTexels };
+}
+
 bool vtkGeoMipMapSharedHeights::IsCurrent(
   vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format, vtkIdType maxBandTexels) const
 {
-  return this->HasData() && this->Source == array && this->SourceTime == array->GetMTime() &&
-    this->Stored == format && this->MaxBandTexels == maxBandTexels;
+  return this->HasData() && this->Last == AttemptOf(array, format, maxBandTexels);
+}
+
+bool vtkGeoMipMapSharedHeights::Failed(
+  vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format, vtkIdType maxBandTexels) const
+{
+  return !this->HasData() && this->Last == AttemptOf(array, format, maxBandTexels);
 }
 
 //------------------------------------------------------------------------------
 std::string vtkGeoMipMapSharedHeights::Share(vtkOpenGLRenderWindow* win, vtkDataArray* array,
+  vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandTexels)
+{
+  const std::string why = this->ShareBands(win, array, format, samples, maxBandTexels);
+  this->Last = AttemptOf(array, format, maxBandTexels); // ShareBands released the previous one
+  if (why.empty())
+  {
+    this->Source = array;
+  }
+  return why;
+}
+
+std::string vtkGeoMipMapSharedHeights::ShareBands(vtkOpenGLRenderWindow* win, vtkDataArray* array,
   vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandTexels)
 {
   this->Release(win);
@@ -131,10 +154,6 @@ std::string vtkGeoMipMapSharedHeights::Share(vtkOpenGLRenderWindow* win, vtkData
   {
     this->Tail[k - packed] = static_cast<float>(array->GetComponent(k, 0));
   }
-  this->MaxBandTexels = maxBandTexels;
-  this->Source = array;
-  this->SourceTime = array->GetMTime();
-  this->Stored = format;
   return std::string();
 }
 
@@ -172,5 +191,5 @@ void vtkGeoMipMapSharedHeights::Forget()
 {
   this->Bands.clear();
   this->Source = nullptr;
-  this->SourceTime = 0;
+  this->Last = Attempt();
 }

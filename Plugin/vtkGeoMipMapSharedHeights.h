@@ -69,7 +69,14 @@ public:
   std::string Share(vtkOpenGLRenderWindow* win, vtkDataArray* array,
     vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandTexels = 0);
 
+  /** True when the last Share had these arguments (and `array` its MTime then) and succeeded. */
   bool IsCurrent(vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format,
+    vtkIdType maxBandTexels = 0) const;
+  /**
+   * True when the last Share had these arguments and failed: trying again would fail
+   * again, until a Release (another context may share them).
+   */
+  bool Failed(vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format,
     vtkIdType maxBandTexels = 0) const;
   bool HasData() const { return !this->Bands.empty(); }
   int GetBands() const { return static_cast<int>(this->Bands.size()); }
@@ -93,6 +100,25 @@ private:
   vtkGeoMipMapSharedHeights(const vtkGeoMipMapSharedHeights&) = delete;
   void operator=(const vtkGeoMipMapSharedHeights&) = delete;
 
+  // Share's work; holds nothing when it fails.
+  std::string ShareBands(vtkOpenGLRenderWindow* win, vtkDataArray* array,
+    vtkGeoMipMapSampleTexture::Format format, vtkIdType samples, vtkIdType maxBandTexels);
+
+  // The arguments of a Share, with the array's MTime then.
+  struct Attempt
+  {
+    const vtkDataArray* Array = nullptr;
+    vtkMTimeType Time = 0;
+    vtkGeoMipMapSampleTexture::Format Stored = vtkGeoMipMapSampleTexture::Float32;
+    vtkIdType MaxBandTexels = 0;
+    bool operator==(const Attempt& o) const
+    {
+      return Array == o.Array && Time == o.Time && Stored == o.Stored && MaxBandTexels == o.MaxBandTexels;
+    }
+  };
+  static Attempt AttemptOf(vtkDataArray* array, vtkGeoMipMapSampleTexture::Format format,
+    vtkIdType maxBandTexels);
+
   struct Band
   {
     unsigned int Buffer = 0;
@@ -104,10 +130,8 @@ private:
   vtkIdType TailStart = 0;
   int PerTexel = 1;
   float Tail[kMaxPerTexel - 1] = { 0.0f, 0.0f, 0.0f };
-  vtkSmartPointer<vtkDataArray> Source; // held: the driver reads its memory
-  vtkMTimeType SourceTime = 0;
-  vtkIdType MaxBandTexels = 0;
-  vtkGeoMipMapSampleTexture::Format Stored = vtkGeoMipMapSampleTexture::Float32;
+  vtkSmartPointer<vtkDataArray> Source; // held while shared: the driver reads its memory
+  Attempt Last; // the last Share's arguments, whether it succeeded or not
 };
 
 #endif
