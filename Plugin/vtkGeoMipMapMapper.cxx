@@ -5,6 +5,7 @@
 #include "vtkGeoMipMapTerrain.h"
 #include "vtkGeoMipMapGPUTerrain.h"
 #include "vtkGeoMipMapMorphTexture.h"
+#include "vtkGeoMipMapSoftwareRenderer.h"
 
 #include "vtkActor.h"
 #include "vtkCommand.h"
@@ -46,6 +47,7 @@
 #include "RayCast.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -60,6 +62,9 @@ double SecondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// SetGlobalRetainHeapOnSoftwareRenderer: process-wide, as the heap policy it governs.
+std::atomic<bool> GlobalRetainHeapOnSoftwareRenderer{ true };
 }
 
 struct vtkGeoMipMapMapper::Internals
@@ -266,6 +271,16 @@ void vtkGeoMipMapMapper::SetFreezeLevelOfDetail(bool freeze)
     this->FreezeLevelOfDetail = freeze;
     this->ModifiedIndicesOnly();
   }
+}
+
+void vtkGeoMipMapMapper::SetGlobalRetainHeapOnSoftwareRenderer(bool retain)
+{
+  GlobalRetainHeapOnSoftwareRenderer = retain;
+}
+
+bool vtkGeoMipMapMapper::GetGlobalRetainHeapOnSoftwareRenderer()
+{
+  return GlobalRetainHeapOnSoftwareRenderer;
 }
 
 int vtkGeoMipMapMapper::GetMinimumBlockSize()
@@ -516,6 +531,10 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   {
     this->ReleaseWindowResources(); // frees in the old window, or forgets a vanished one's
     win->MakeCurrent();
+    if (GlobalRetainHeapOnSoftwareRenderer && vtkGeoMipMapSoftwareRenderer::IsCurrent())
+    {
+      vtkGeoMipMapSoftwareRenderer::RetainHeap();
+    }
   }
   in.Window = win;
 

@@ -1,5 +1,6 @@
 // VTK-HeaderTest-Exclude: vtkGeoMipMapSharedHeights.cxx
 #include "vtkGeoMipMapSharedHeights.h"
+#include "vtkGeoMipMapSoftwareRenderer.h"
 
 #include "vtkDataArray.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -7,7 +8,6 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
-#include <cstring>
 #include <sstream>
 
 #ifndef GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD
@@ -17,9 +17,7 @@
 //------------------------------------------------------------------------------
 bool vtkGeoMipMapSharedHeights::Usable(vtkOpenGLRenderWindow*)
 {
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const bool onCPU = renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
-  return onCPU && glewIsSupported("GL_AMD_pinned_memory") && glewIsSupported("GL_ARB_texture_buffer_object");
+  return vtkGeoMipMapSoftwareRenderer::IsCurrent() && glewIsSupported("GL_AMD_pinned_memory") && glewIsSupported("GL_ARB_texture_buffer_object");
 }
 
 bool vtkGeoMipMapSharedHeights::SharesFormat(vtkDataArray* a, vtkGeoMipMapSampleTexture::Format f)

@@ -3,7 +3,7 @@
     xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/python3 bench_budget.py \
         [--dems sthelens,rainier,puget,synthetic4097] [--frames 60] [--fps 10] \
         [--size 960x540] [--measure-every 6] [--budget 150000] [--no-lod-actors] [--trace]
-        [--slope-texture]
+        [--slope-texture] [--no-retain-heap]
 
 Per DEM, one orbit (geomipmap.flight.Orbit, terrain following at 300 m clearance, pitch 15,
 --frames frames) flown in five ways in the same process:
@@ -36,6 +36,7 @@ import argparse
 import json
 import math
 import os
+import resource
 import statistics
 import sys
 import time
@@ -58,6 +59,10 @@ def parse():
                    help="FrontToBack off in modes 1 and 3 (for comparison runs)")
     p.add_argument("--slope-texture", action="store_true",
                    help="SlopeTexture on in modes 1 and 3 (the default before 2026-12-01, session 5)")
+    p.add_argument("--no-retain-heap", action="store_true",
+                   help="leave the C library's heap policy alone on llvmpipe "
+                        "(vtkGeoMipMapMapper.SetGlobalRetainHeapOnSoftwareRenderer(False); "
+                        "the mapper before 2026-12-01, session 7)")
     p.add_argument("--trace", action="store_true",
                    help="print each frame of the frame-rate mode (ms, budget, triangles, error)")
     p.add_argument("--data", default=os.environ.get("GEOMIPMAP_DATA_DIR", os.path.join(
@@ -189,17 +194,19 @@ def frame_rate_mode(image, flight, args, size, out):
     steered = []
     exact_early = over = 0
     for k in range(len(flight)):
+        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
         times.append(s.frame(flight, k))
+        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults
         over += k >= WARMUP and m.GetOverTriangleBudget()
         if k >= WARMUP and not m.GetTriangleBudgetReached() and times[-1] < 0.8 / args.fps:
             exact_early += 1
         if args.trace:
             print("frame %3d %7.1f ms (mapper %7.1f, LOD %5.1f, upload %5.1f ms %6.2f MB) budget %8d "
-                  "drawn %8d err %.3g%s"
+                  "drawn %8d err %.3g%s, %d page faults"
                   % (k, 1000 * times[-1], 1000 * m.GetLastRenderTime(), 1000 * m.GetLastUpdateTime(),
                      1000 * m.GetLastIndexUploadTime(), m.GetLastIndexUploadBytes() / 1e6,
                      m.GetTriangleBudgetInForce(), m.GetNumberOfRenderedTriangles(),
-                     m.GetMaximumScreenSpaceError(), "" if m.GetTriangleBudgetReached() else " (tau)"),
+                     m.GetMaximumScreenSpaceError(), "" if m.GetTriangleBudgetReached() else " (tau)", faults),
                   file=sys.stderr)
         mapper_times.append(m.GetLastRenderTime())
         budgets.append(m.GetTriangleBudgetInForce())
@@ -302,7 +309,9 @@ def fixed_budget_mode(image, flight, args, size, out):
     s = Scene(image, size, a, args.fps)
     over, coarsest_over, worst, rows, times, drawn, certified = 0, 0, 0.0, [], [], [], []
     for k in range(len(flight)):
+        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
         times.append(s.frame(flight, k))
+        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults
         n = m.GetNumberOfRenderedTriangles()
         over += n > args.budget and not m.GetOverTriangleBudget()
         coarsest_over += m.GetOverTriangleBudget()
@@ -407,6 +416,9 @@ def main():
     from geomipmap.flight import Orbit
 
     size = tuple(int(v) for v in args.size.split("x"))
+    if args.no_retain_heap:
+        import geomipmap
+        geomipmap.vtkGeoMipMapMapper.SetGlobalRetainHeapOnSoftwareRenderer(False)
     results = []
     for name in args.dems.split(","):
         t0 = time.perf_counter()
