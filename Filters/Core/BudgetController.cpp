@@ -37,9 +37,9 @@ const char* BudgetController::setSettings(const Settings& s)
   {
     return "hysteresis must be in [0, 1)";
   }
-  if (!(s.maxGrowth > 1.0 && std::isfinite(s.maxGrowth) && s.nearGrowth > 1.0 && s.nearGrowth <= s.maxGrowth))
+  if (!(s.maxGrowth > 1.0 && std::isfinite(s.maxGrowth)))
   {
-    return "growth must satisfy 1 < nearGrowth <= maxGrowth, finite";
+    return "maxGrowth must be finite and > 1";
   }
   if (s.window < 3 || s.window > 64 || s.slopeWindow < 1 || s.slopeWindow > s.window)
   {
@@ -149,13 +149,10 @@ std::size_t BudgetController::budgetFor(double seconds)
     return budget_;
   }
   double want = (seconds - fixed_) / perTriangle_;
-  // Growth: fast far below the target, slow near it, from what the last frame could use
-  // (see the header).
-  const double last = std::max(recent(0).seconds, 1e-9 * seconds);
-  const double growth = std::min(std::max(std::sqrt(seconds / last), settings_.nearGrowth), settings_.maxGrowth);
+  // Growth: at most maxGrowth of what the last frame could use (see the header).
   const double usable = lastReached_ ? std::max(static_cast<double>(lastTriangles_), static_cast<double>(budget_))
                                      : static_cast<double>(lastTriangles_);
-  want = std::min(want, usable * growth);
+  want = std::min(want, usable * settings_.maxGrowth);
   want = std::max(want, static_cast<double>(settings_.minBudget));
   want = std::min(want, static_cast<double>(settings_.maxBudget));
   budget_ = static_cast<std::size_t>(want);

@@ -21,17 +21,15 @@
 // Hysteresis: the budget in force is kept while its predicted time is within
 // `hysteresis` (a fraction) of the target, so measurement noise does not make it
 // oscillate; when it moves, it moves to the predicted budget, and drops as far as needed
-// at once (a slow frame is worse than a coarse one), but grows at most by a factor of
-// sqrt(target / last frame's time), clamped to [nearGrowth, maxGrowth], of what the last
-// frame could use:
-// - the factor: a model learnt on small frames may extrapolate badly, and the cost per
-//   triangle moves with the view (on a Puget Sound orbit, 72 ms for 260 k triangles, then
-//   160 ms for 347 k); so near the target the budget creeps (nearGrowth, 1.25), while far
-//   below it it climbs fast (maxGrowth, 2: from 512 triangles to 300 k in 9 frames, not
-//   29). In six alternated runs of bench_budget.py's rate mode against a plain 2x cap it
-//   held more frames within +-20 % of the target on the real DEMs (72 against 61 %, 89
-//   against 86 %) and fewer on 4097² (85 against 91 %), all within the runs' spread
-//   (benchmarks-core.md, session 6);
+// at once (a slow frame is worse than a coarse one), but grows at most by maxGrowth (2x)
+// of what the last frame could use:
+// - the factor: a model learnt on small frames may extrapolate badly. A two-speed cap
+//   (sqrt(target / last frame's time), clamped to [1.25, 2]) was tried in session 6 and
+//   dropped in session 7: it had been measured while llvmpipe's page faults moved the cost
+//   per triangle by 2x from frame to frame (vtkGeoMipMapSoftwareRenderer.h); without them,
+//   in five alternated runs of bench_budget.py's rate mode, the plain 2x cap held more
+//   frames within +-20 % of the target (4097²: 95 against 90 %, Puget Sound: 90 against
+//   86 %; benchmarks-core.md, session 7);
 // - what the last frame could use: the triangles it drew, or the budget in force when the
 //   budget, not tau, stopped it (a refinement step that did not fit leaves the count below
 //   the budget, and growing from the count alone could stall there). Never more: a budget
@@ -59,8 +57,7 @@ public:
     std::size_t minBudget = 512;
     std::size_t maxBudget = std::size_t(1) << 30;
     double hysteresis = 0.1; // keep the budget while predicted time is within 10 % of target
-    double maxGrowth = 2.0;   // growth per frame far below the target
-    double nearGrowth = 1.25; // growth per frame near it (1 < nearGrowth <= maxGrowth)
+    double maxGrowth = 2.0;  // growth per frame, of what the last frame could use (> 1)
     int window = 16;         // frames the fixed part is fitted on (3..64)
     int slopeWindow = 5;     // frames the cost per triangle is the median of (1..window)
   };
