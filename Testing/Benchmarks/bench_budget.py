@@ -309,9 +309,7 @@ def fixed_budget_mode(image, flight, args, size, out):
     s = Scene(image, size, a, args.fps)
     over, coarsest_over, worst, rows, times, drawn, certified = 0, 0, 0.0, [], [], [], []
     for k in range(len(flight)):
-        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
         times.append(s.frame(flight, k))
-        faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults
         n = m.GetNumberOfRenderedTriangles()
         over += n > args.budget and not m.GetOverTriangleBudget()
         coarsest_over += m.GetOverTriangleBudget()

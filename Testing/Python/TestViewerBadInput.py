@@ -33,6 +33,8 @@ cases = {
     "two DEMs": ([garbage, empty], ["unrecognized"]),
     "tau -1": (["--tau", "-1"], ["--tau"]),
     "tau nan": (["--tau", "nan"], ["--tau"]),
+    "fps 0": (["--fps", "0"], ["--fps"]),
+    "fps nan": (["--fps", "nan"], ["--fps"]),
     "size junk": (["--size", "big"], ["--size"]),
     "size 0x5": (["--size", "0x5"], ["--size"]),
     "block size 48": (["--block-size", "48"], ["--block-size", "4..1024"]),

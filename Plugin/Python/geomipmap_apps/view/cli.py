@@ -49,6 +49,11 @@ def build_parser():
     command.add_rendering_options(p)
     g = p.add_argument_group("viewer")
     g.add_argument("--fly", action="store_true", help="start in fly mode (default: orbit)")
+    g.add_argument("--fps", type=command.positive(float), default=None, metavar="RATE",
+                   help="hold RATE frames a second while a mouse button moves the camera: "
+                   "each such frame draws the triangles that fit in 1/RATE s, learnt from "
+                   "the mapper's own frames, with the smallest error they allow, never "
+                   "finer than --tau; the frame on release is drawn at --tau (default: off)")
     g.add_argument("--screenshot-dir", default=".", metavar="DIR",
                    help="where 's' writes geomipmap-view-NNNN.png (default: .; made "
                    "when missing)")
@@ -117,7 +122,7 @@ def open_viewer(args, stream=sys.stderr, say=None):
     if err := messages.first_error():
         raise AppError(f"cannot show {what}: {err}")
     viewer = Viewer(view, image, overlay, screenshot_dir=args.screenshot_dir, fly=args.fly,
-                    prog=PROG, say=say)
+                    prog=PROG, say=say, fps=args.fps)
     viewer.initialize()
     if err := messages.first_error():
         raise AppError(f"rendering failed: {err}")

@@ -127,9 +127,11 @@ class FlyStyle:
 
     def _press(self, *_):
         self.looking = self.viewer.interactor.GetEventPosition()
+        self.viewer.start_motion()
 
     def _release(self, *_):
         self.looking = None
+        self.viewer.end_motion()
 
     def _move(self, *_):
         if self.looking is None:
@@ -206,11 +208,14 @@ class Viewer:
     colours are the scene's). image: the terrain image the mapper draws. screenshot_dir:
     where 's' writes geomipmap-view-NNNN.png. fly: start in fly mode. prog: the name
     messages start with. say(text): where status messages go besides the overlay
-    (default: print).
+    (default: print). fps: the frame rate to hold while a mouse button moves the camera
+    (VTK's frame-rate contract: the interactor's DesiredUpdateRate, which the interactor
+    styles put on the window during a drag, and the mapper's FollowAllocatedRenderTime);
+    None: tau alone.
     """
 
     def __init__(self, scene, image, overlay, screenshot_dir=".", fly=False,
-                 prog="geomipmap-view", say=None):
+                 prog="geomipmap-view", say=None, fps=None):
         self.scene = scene
         self.image = image
         self.mapper = scene.mapper
@@ -231,6 +236,14 @@ class Viewer:
 
         self.interactor = vtkRenderWindowInteractor()
         self.interactor.SetRenderWindow(self.window)
+        self.fps = fps
+        if fps:
+            # VTK splits a frame's time evenly among the window's renderers; the overlay's
+            # (text only) costs next to nothing, so the rate asked of VTK is lowered for
+            # the terrain's renderer to get the whole 1 / fps.
+            renderers = max(self.window.GetRenderers().GetNumberOfItems(), 1)
+            self.interactor.SetDesiredUpdateRate(fps / renderers)
+            self.mapper.FollowAllocatedRenderTimeOn()
         self.orbit_style = vtkInteractorStyleTerrain()
         self.fly_style = FlyStyle(self)
         for style in (self.orbit_style, self.fly_style.style):
@@ -420,6 +433,19 @@ class Viewer:
     def quit(self):
         self.interactor.ExitCallback()
 
+    # -- frame rate while moving ---------------------------------------------------------
+    def start_motion(self):
+        """A drag starts (fly mode's look; VTK's orbit style does the same itself): frames
+        are interactive until end_motion, rendered at the interactor's DesiredUpdateRate."""
+        self.window.SetDesiredUpdateRate(self.interactor.GetDesiredUpdateRate())
+
+    def end_motion(self):
+        """The drag ends: back to the still rate, and with --fps a still frame (tau) of
+        where it ended."""
+        self.window.SetDesiredUpdateRate(self.interactor.GetStillUpdateRate())
+        if self.fps:
+            self.interactor.Render()
+
     # -- statistics ---------------------------------------------------------------------
     def _frame_start(self, *_):
         self._t0 = time.perf_counter()
@@ -442,7 +468,12 @@ class Viewer:
                 "visible_blocks": visible if drawn else 0, "blocks": visible + culled,
                 "certified_error_px": m.GetMaximumScreenSpaceError() if drawn else 0.0,
                 "lod_ms": m.GetLastUpdateTime() * 1000.0 if drawn else 0.0,
-                "frame_ms": self.frame_ms, "frozen": self.frozen()}
+                "frame_ms": self.frame_ms, "frozen": self.frozen(),
+                # --fps: whether the frame was a moving one, drawn within a triangle budget
+                # for its allocated time, and that budget.
+                "interactive": bool(drawn and m.GetLastFrameInteractive()),
+                "budget": int(m.GetTriangleBudgetInForce()) if drawn else 0,
+                "allocated_ms": m.GetLastAllocatedRenderTime() * 1000.0 if drawn else 0.0}
 
     def stats_text(self):
         s = self.stats()
@@ -450,7 +481,13 @@ class Viewer:
         lod = "FROZEN (figures of the frozen view)" if s["frozen"] else "live"
         if not s["in_view"]:
             lod += "   (terrain out of view)"
+        rate = ""
+        if self.fps:
+            rate = (f"{self.fps:g} fps: moving, budget {s['budget']:,} triangles in "
+                    f"{s['allocated_ms']:.0f} ms\n" if s["interactive"]
+                    else f"{self.fps:g} fps while moving; still: tau\n")
         return (f"tau {s['tau']:g} px   certified error {s['certified_error_px']:.3f} px\n"
+                + rate +
                 f"triangles {s['triangles']:,}   visible blocks {s['visible_blocks']} "
                 f"of {s['blocks']}\n"
                 f"last frame {frame}   LOD update {s['lod_ms']:.2f} ms\n"
