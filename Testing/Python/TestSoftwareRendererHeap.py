@@ -16,6 +16,7 @@ and skips), and with the default they must touch (almost) no new page. Skipped, 
 message, on a hardware renderer and where the C library is not glibc.
 """
 
+import ctypes
 import json
 import math
 import platform
@@ -35,6 +36,14 @@ check = refscene.Checks()
 if platform.libc_ver()[0] != "glibc":
     print("SKIP: the heap policy is glibc's (libc here: %r)" % (platform.libc_ver(),))
     sys.exit(0)
+if "--child" not in sys.argv:
+    # Is malloc glibc's? Under a sanitizer's allocator (preloaded by Scripts/sanitize.sh)
+    # mallopt is a stub that answers 0, and the mapper leaves the heap as it is. Asked in
+    # this parent only, with glibc's own initial value (M_TRIM_THRESHOLD, 128 KiB): the
+    # children, which measure, inherit nothing from it.
+    if ctypes.CDLL(None).mallopt(-1, 128 * 1024) != 1:
+        print("SKIP: malloc here is not glibc's (mallopt refused: a sanitizer's allocator?)")
+        sys.exit(0)
 
 
 def child(retain):
