@@ -22,7 +22,7 @@ bool vtkGeoMipMapSoftwareRenderer::RetainHeap()
   static std::once_flag once;
   static bool set = false;
   std::call_once(once, [] {
-    // Trim first: setting either parameter ends glibc's adaptation of both.
+    // Both values: setting either parameter ends glibc's adaptation of both.
     set = mallopt(M_TRIM_THRESHOLD, static_cast<int>(kTrimThreshold)) == 1 &&
       mallopt(M_MMAP_THRESHOLD, static_cast<int>(kMmapThreshold)) == 1;
   });
