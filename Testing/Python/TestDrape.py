@@ -379,15 +379,7 @@ def refusals(folder):
     nogeo = demfiles.tiff(os.path.join(folder, "nogeo.tif"), photo(40, 40, {}), georef=None,
                           rgb=True)
     deep = demfiles.tiff(os.path.join(folder, "u16.tif"), np.zeros((8, 8), np.uint16))
-    png_dem = os.path.join(folder, "h.png")
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    hm = vtkImageData()
-    hm.SetDimensions(8, 8, 1)
-    hm.AllocateScalars(5, 1)  # VTK_UNSIGNED_SHORT
-    w = vtkPNGWriter()
-    w.SetInputData(hm)
-    w.SetFileName(png_dem)
-    w.Write()
+    png_dem = demfiles.png16(os.path.join(folder, "h.png"), np.zeros((8, 8), np.uint16))
     no_crs = read_dem(png_dem)[1]
     cases = [
         ("a missing file", os.path.join(folder, "missing.tif"), dem, {}, "not an image GDAL"),

@@ -56,22 +56,6 @@ def measure(path, raw):
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def png16(path, z):
-    """z (ny x nx uint16, row 0 south, as vtkImageData holds it) as a 16-bit PNG."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    img = vtkImageData()
-    img.SetDimensions(z.shape[1], z.shape[0], 1)
-    img.GetPointData().SetScalars(numpy_to_vtk(z.ravel(), deep=True))
-    w = vtkPNGWriter()
-    w.SetCompressionLevel(1)
-    w.SetInputData(img)
-    w.SetFileName(path)
-    w.Write()
-    return path
-
-
 try:
     rng = np.random.default_rng(3)
     z = (rng.random((N, N), dtype=np.float32) * 1000.0).astype(np.float32)
@@ -85,7 +69,7 @@ try:
     del i, j
     png_raw = os.path.join(tmp, "png.f32")
     u.astype(np.float32).tofile(png_raw)
-    cases.append(("16-bit PNG", png16(os.path.join(tmp, "u16.png"), u), png_raw, 1.25))
+    cases.append(("16-bit PNG", demfiles.png16(os.path.join(tmp, "u16.png"), u), png_raw, 1.25))
     del u
     for name, path, raw, most in cases:
         m = measure(path, raw)

@@ -4,7 +4,7 @@ tiff(): a minimal little-endian, one-strip, uncompressed TIFF, optionally a GeoT
 (ModelPixelScale + ModelTiepoint + a UTM zone 10N GeoKeyDirectory) with a GDAL_NODATA
 tag. Every header field can be forged (width, height, sample format, compression) so the
 same writer makes the malformed files. esri_ascii() and hgt() write the text and SRTM
-formats.
+formats, png16() a 16-bit greyscale PNG (through VTK's writer).
 """
 import struct
 
@@ -100,4 +100,22 @@ def hgt(path, z):
     """SRTM .hgt: big-endian int16, row 0 = north, -32768 = void."""
     with open(path, "wb") as f:
         f.write(np.asarray(z, dtype=">i2").tobytes())
+    return path
+
+
+def png16(path, z):
+    """z (ny x nx, uint16, row 0 south, as vtkImageData holds it) as a 16-bit greyscale PNG
+    (zlib level 1: the tests write large ones)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    z = np.asarray(z, dtype=np.uint16)
+    img = vtkImageData()
+    img.SetDimensions(z.shape[1], z.shape[0], 1)
+    img.GetPointData().SetScalars(numpy_to_vtk(z.ravel(), deep=True))
+    w = vtkPNGWriter()
+    w.SetCompressionLevel(1)
+    w.SetInputData(img)
+    w.SetFileName(path)
+    w.Write()
     return path
