@@ -34,7 +34,8 @@ constexpr std::size_t kTrimThreshold = std::size_t(64) << 20;
  * of a 100 ms frame (about 4000 faults), until a large enough free raised glibc's
  * thresholds, which in a flight whose triangle count grows slowly took 40 frames or never
  * came. Cost: up to kTrimThreshold of freed memory stays mapped. Returns false where the C
- * library has no mallopt (not glibc): nothing is changed there.
+ * library has no mallopt (not glibc) or refuses it (ASan's allocator answers 0): the heap
+ * is then left as it is.
  */
 bool RetainHeap();
 }
