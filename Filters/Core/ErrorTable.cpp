@@ -146,11 +146,11 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
 }
 
 // A merged node's fan over every sample of the node; nodata anywhere below it is +inf
-// (the fan would draw over the hole). Nodes above kExactMergedHeight get a bound instead:
-// every fan vertex is a sample of the node, so the fan lies within the node's height range
-// and no sample is further from it than that range. Such nodes are drawn only from far
-// away, and computing their fans exactly would cost the table one more pass over every
-// sample per level.
+// (the fan would draw over the hole). Nodes whose error is not computed exactly
+// (mergedErrorIsExact) get a bound instead: every fan vertex is a sample of the node, so
+// the fan lies within the node's height range and no sample is further from it than that
+// range. Such nodes are drawn only from far away, and computing their fans exactly would
+// cost the table one more pass over every sample per level.
 float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scratch& scratch)
 {
   if (!mergeableNode(qt, node))
@@ -158,7 +158,7 @@ float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scrat
     return kInf;
   }
   const QuadtreeNode& n = qt.nodes[node];
-  if (n.height > kExactMergedHeight)
+  if (!mergedErrorIsExact(qt, node))
   {
     for (int r = n.rowBegin; r < n.rowEnd; ++r)
       for (int c = n.colBegin; c < n.colEnd; ++c)
@@ -172,6 +172,14 @@ float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scrat
 }
 
 } // namespace
+
+bool mergedErrorIsExact(const Quadtree& qt, int node)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  const int quads = std::max(qt.colStart[n.colEnd] - qt.colStart[n.colBegin],
+    qt.rowStart[n.rowEnd] - qt.rowStart[n.rowBegin]);
+  return n.height <= kExactMergedHeight || quads <= kExactMergedQuads;
+}
 
 ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int threads,
   const std::function<void(double)>& progress)

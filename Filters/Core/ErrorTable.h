@@ -22,8 +22,14 @@
 namespace gmm
 {
 
-// Merged nodes up to this height above the leaves (about 16 x 16 blocks) have exact errors.
+// Merged nodes up to this height above the leaves (16 x 16 blocks), or up to
+// kExactMergedQuads quads on their longer side, have exact errors; the others a bound
+// (mergedErrorIsExact). The extent rule is what lets small leaves merge the far field as
+// widely as large ones: with the height rule alone, block 16's exact nodes were a quarter
+// of block 32's area, its far field stayed 4x finer, and over a whole 16385^2 DEM it drew
+// 1.5x the triangles of block 32 (benchmarks-core.md, session 8).
 constexpr int kExactMergedHeight = 4;
+constexpr int kExactMergedQuads = 512;
 
 struct ErrorTable
 {
@@ -39,9 +45,9 @@ struct ErrorTable
   std::vector<float> stripError;
   int pairs = 0; // levels * (levels - 1) / 2
   // mergedError[node]: error of quadtree node `node` drawn whole (Tessellate.h, merged
-  // nodes: the fan over its perimeter): exact up to kExactMergedHeight levels above the
-  // leaves, the node's height range (a bound) above; +inf for leaves, nodes that are not
-  // mergeable and nodes over nodata.
+  // nodes: the fan over its perimeter): exact where mergedErrorIsExact, the node's height
+  // range (a bound) elsewhere; +inf for leaves, nodes that are not mergeable and nodes
+  // over nodata.
   std::vector<float> mergedError;
 
   static int pairIndex(int m, int n) { return n * (n - 1) / 2 + m; } // m < n
@@ -56,6 +62,10 @@ struct ErrorTable
     return stripError[(static_cast<std::size_t>(block) * 4 + side) * pairs + pairIndex(m, n)];
   }
 };
+
+// Whether mergedError[node] is the exact error of the node's fan (kExactMergedHeight,
+// kExactMergedQuads) rather than a bound.
+bool mergedErrorIsExact(const Quadtree& qt, int node);
 
 // Builds the table with up to `threads` worker threads (0 = hardware concurrency).
 // `progress`, when given, is called with the fraction of blocks done, from the calling

@@ -23,7 +23,10 @@ namespace fs = std::filesystem;
 constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // Version 1: the table of the four-side-strip tessellation (ErrorTable.h). Any change of
 // the table's meaning or layout changes it, and older files are then rebuilt.
-constexpr uint32_t kFormatVersion = 2; // 2: merged-node errors
+// 2: merged-node errors; 3: merged nodes up to kExactMergedQuads wide have exact errors
+// (a version 2 file holds bounds there, which would make a small block size draw a finer
+// far field when its table comes from an old cache than when it is built).
+constexpr uint32_t kFormatVersion = 3;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

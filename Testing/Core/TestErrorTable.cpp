@@ -289,9 +289,9 @@ TEST(ErrorTable, MergedNodeErrorsEqualBruteForce)
   int compared = 0, bounded = 0;
   for (int k = 0; k < 11; ++k)
   {
-    // The last DEM is large enough at block size 4 for nodes more than kExactMergedHeight
-    // levels above the leaves, whose entries are bounds.
-    const int nx = k < 10 ? randInt(rng, 20, 120) : 200, ny = k < 10 ? randInt(rng, 20, 120) : 180;
+    // The last DEM is large enough at block size 4 for nodes whose entries are bounds (more
+    // than kExactMergedHeight levels above the leaves and kExactMergedQuads wide).
+    const int nx = k < 10 ? randInt(rng, 20, 120) : 1100, ny = k < 10 ? randInt(rng, 20, 120) : 600;
     gmm::Heightfield hf = roughTerrain(nx, ny, rng);
     const bool hole = k % 3 == 0;
     if (hole)
@@ -339,7 +339,7 @@ TEST(ErrorTable, MergedNodeErrorsEqualBruteForce)
       for (const gmm::GridTriangle& t : fan)
         brute = std::max(brute, bruteTriangleError(hf, t));
       EXPECT_GE(table.mergedError[n], brute * (1 - 1e-12)) << "node " << n;
-      if (node.height <= gmm::kExactMergedHeight)
+      if (gmm::mergedErrorIsExact(qt, static_cast<int>(n)))
       {
         EXPECT_LE(table.mergedError[n], brute * (1 + 1e-6) + 1e-9) << "node " << n;
         ++compared;
