@@ -300,13 +300,17 @@ void trimTableCache(const std::string& directory, uint64_t maxBytes)
   std::error_code ec;
   for (fs::directory_iterator it(directory, ec), end; !ec && it != end; it.increment(ec))
   {
+    // Its own error code: a file that another process removes between the listing and
+    // these queries is skipped, and does not end the listing (the loop's `ec`).
+    std::error_code entry;
     const fs::path& p = it->path();
-    if (p.extension() != kExtension || !it->is_regular_file(ec))
+    if (p.extension() != kExtension || !it->is_regular_file(entry))
     {
       continue;
     }
-    Entry e{ p, it->last_write_time(ec), it->file_size(ec) };
-    if (!ec)
+    Entry e{ p, it->last_write_time(entry), 0 };
+    e.bytes = entry ? 0 : it->file_size(entry);
+    if (!entry)
     {
       total += e.bytes;
       files.push_back(std::move(e));
@@ -315,7 +319,8 @@ void trimTableCache(const std::string& directory, uint64_t maxBytes)
   std::sort(files.begin(), files.end(), [](const Entry& a, const Entry& b) { return a.time < b.time; });
   for (std::size_t k = 0; k < files.size() && total > maxBytes; ++k)
   {
-    if (fs::remove(files[k].path, ec))
+    std::error_code removed;
+    if (fs::remove(files[k].path, removed))
     {
       total -= files[k].bytes;
     }
