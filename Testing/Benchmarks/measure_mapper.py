@@ -6,6 +6,7 @@ height type gives an honest bytes-per-sample figure, input image included.
 
     xvfb-run -a /usr/bin/python3 measure_mapper.py 8193 [float32|int16] [--frames 24]
         [--no-color] [--no-lighting] [--no-share] [--slope-texture | --no-slope-texture]
+        [--block-size N]
 
 --no-share: heights always in a texture (ShareHeights off), as on a GPU with its own memory.
 --slope-texture: slopes from a slope texture (SlopeTexture on).
@@ -82,6 +83,8 @@ def main(argv):
     mapper = geomipmap.vtkGeoMipMapMapper()
     mapper.SetInputData(image)
     mapper.SetPixelError(1.0)
+    if "--block-size" in argv:
+        mapper.SetBlockSize(int(argv[argv.index("--block-size") + 1]))
     mapper.SetScalarRange(0.0, 1500.0)
     if "--no-color" in argv:
         mapper.ScalarVisibilityOff()
