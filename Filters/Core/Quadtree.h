@@ -81,6 +81,10 @@ constexpr int kMinBlockQuads = 4;
 // nodes, costs less per frame over a whole 16385^2 DEM, for about 2x the CPU per frame at
 // 4097^2 and 1.3x the table build time at 16385^2; 16 draws fewer triangles still but
 // holds 3.8x the per-block memory of 32 and costs 2x its CPU per frame at 16385^2.
+// Session 8 measured 16 again, as an automatic default for DEMs up to 2^27 samples: frames
+// 1.25 - 1.5x faster on llvmpipe at 4097^2 and on the real DEMs, but geomorphing pops more
+// (on TestMorphRamp's flight at 0.64 quad a frame: worst 0.81 against 0.49 px, mean of the
+// frames' worst 0.26 against 0.10 px), so the default stayed 32 (benchmarks-core.md).
 constexpr int kDefaultBlockQuads = 32;
 
 // "" when maxBlockQuads is a usable block size (>= kMinBlockQuads), else the reason.
