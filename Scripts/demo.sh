@@ -7,8 +7,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOMIPMAP_BUILD_DIR:-$here/build}
 bash "$here/Scripts/setup.sh"
-run=()
-[ -n "${DISPLAY:-}" ] || run=(xvfb-run -a -s "-screen 0 1920x1080x24")
+source "$here/Scripts/display.sh" # run=(): xvfb-run where there is no display
 out=${GEOMIPMAP_DEMO_OUT:-$PWD/geomipmap-flight}
 video=flight.mp4
 command -v ffmpeg >/dev/null || video=flight.ogv

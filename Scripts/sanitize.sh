@@ -33,12 +33,7 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="$common_asan:detect_leaks=1"
 
-run=()
-# -noreset: by default Xvfb resets when its last client disconnects, and drops a client
-# that connects meanwhile; with tests in parallel one test's window then fails to open
-# ("bad X server connection", VTK aborts). 4 processes opening and closing the display
-# 1200 times failed 30 times without it, 0 with it.
-[ -n "${DISPLAY:-}" ] || run=(xvfb-run -a -s "-screen 0 1920x1080x24 -noreset")
+source "$here/Scripts/display.sh" # run=(): xvfb-run where there is no display
 cd "$build"
 status=0
 # 1) Everything but the Python tests: instrumented executables, leak detection on. The
