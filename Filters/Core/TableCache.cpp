@@ -308,13 +308,20 @@ void trimTableCache(const std::string& directory, uint64_t maxBytes)
     {
       continue;
     }
-    Entry e{ p, it->last_write_time(entry), 0 };
-    e.bytes = entry ? 0 : it->file_size(entry);
-    if (!entry)
+    // One query at a time: a query that succeeds clears `entry`, so checking only after
+    // both would miss the first one's failure.
+    const fs::file_time_type time = it->last_write_time(entry);
+    if (entry)
     {
-      total += e.bytes;
-      files.push_back(std::move(e));
+      continue;
     }
+    const uintmax_t bytes = it->file_size(entry);
+    if (entry)
+    {
+      continue;
+    }
+    total += bytes;
+    files.push_back(Entry{ p, time, bytes });
   }
   std::sort(files.begin(), files.end(), [](const Entry& a, const Entry& b) { return a.time < b.time; });
   for (std::size_t k = 0; k < files.size() && total > maxBytes; ++k)
