@@ -29,11 +29,13 @@ void textureSize(const gmm::Quadtree& qt, int& width, int& height)
 // and (nx + ny) / 64 rows fit the 16384 of GL_MAX_TEXTURE_SIZE up to 2^19 samples a side.
 constexpr int kMaxSampleBandsShift = 6;
 
-// The (band, first sample, last sample) of every sample along one axis of the quadtree's
-// bands (`start`: band starts, then the end), 4 floats each, appended to `out`: band k
+// The (band, first sample, last sample, band's upper-half flag) of every sample along one
+// axis of the quadtree's bands (`start`: band starts, then the end; `upper`: the quadtree's
+// colUpperHalf or rowUpperHalf, for oneQuadAntiDiagonal), 4 floats each, appended to `out`: band k
 // holds samples [start[k], start[k + 1]], its last sample shared with band k + 1, which
 // gmm::morphedHeight's band search assigns to band k + 1 (the last one to the last band).
-void appendSampleBands(const std::vector<int>& start, int rowTexels, std::vector<float>& out)
+void appendSampleBands(const std::vector<int>& start, const std::vector<uint8_t>& upper, int rowTexels,
+  std::vector<float>& out)
 {
   const int samples = start.back() + 1;
   const size_t first = out.size();
@@ -49,6 +51,7 @@ void appendSampleBands(const std::vector<int>& start, int rowTexels, std::vector
     t[0] = static_cast<float>(k);
     t[1] = static_cast<float>(start[k]);
     t[2] = static_cast<float>(start[k + 1]);
+    t[3] = static_cast<float>(upper[k]);
   }
 }
 
@@ -210,9 +213,9 @@ std::string vtkGeoMipMapMorphTexture::BuildSampleBands(vtkOpenGLRenderWindow* wi
   }
   const int rowTexels = 1 << shift;
   std::vector<float> bands;
-  appendSampleBands(qt.colStart, rowTexels, bands);
+  appendSampleBands(qt.colStart, qt.colUpperHalf, rowTexels, bands);
   const int columnRows = static_cast<int>(bands.size() / (4 * static_cast<size_t>(rowTexels)));
-  appendSampleBands(qt.rowStart, rowTexels, bands);
+  appendSampleBands(qt.rowStart, qt.rowUpperHalf, rowTexels, bands);
   const int rows = static_cast<int>(bands.size() / (4 * static_cast<size_t>(rowTexels)));
   const int maxSize = vtkTextureObject::GetMaximumTextureSize(win);
   if (rowTexels > maxSize || rows > maxSize)

@@ -4,7 +4,8 @@
 // (a thin strip when the step does not divide the block). A block is drawn in one of three
 // shapes, and a level is valid only when it gives one of them:
 //   ring:     2^m < width and 2^m < height. Inner grid plus four side strips (see Tessellate.h).
-//   one quad: 2^m >= width and 2^m >= height. Two triangles over the four corners.
+//   one quad: 2^m >= width and 2^m >= height. Two triangles over the four corners, split
+//             along the diagonal oneQuadAntiDiagonal (Quadtree.h) chooses.
 //   thin:     level 0 of a block one quad wide or tall (only when the whole DEM is).
 // Levels with 2^m >= one side but < the other are skipped: they would need a strip whose
 // error depends on two neighbours at once, which the error table does not hold.

@@ -41,7 +41,8 @@ double polylineAt(int first, int last, int level, int s, At at)
 // Height of block rectangle [i0, i1] x [j0, j1] drawn at `level` with its own edges, at
 // the interior sample (i, j): the cell of the grid edgeSamples(level) x edgeSamples(level)
 // that holds it, split as Tessellate splits it (see Morph.h).
-double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int level, int i, int j)
+double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int level, bool oneQuadAnti,
+  int i, int j)
 {
   const long long step = 1LL << level;
   const long long u = (i - i0) / step, v = (j - j0) / step;
@@ -49,7 +50,7 @@ double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int
   const long long ib = std::min<long long>(ia + step, i1), jb = std::min<long long>(ja + step, j1);
   const long long k = (i1 - i0 + step - 1) / step, L = (j1 - j0 + step - 1) / step; // cells per side
   const bool ring = blockShape(i1 - i0, j1 - j0, level) == BlockShape::Ring;
-  const bool anti = ring && ((u == k - 1 && v == 0) || (u == 0 && v == L - 1));
+  const bool anti = ring ? (u == k - 1 && v == 0) || (u == 0 && v == L - 1) : oneQuadAnti;
   const double fx = static_cast<double>(i - ia) / static_cast<double>(ib - ia);
   const double fy = static_cast<double>(j - ja) / static_cast<double>(jb - ja);
   const double h00 = hf.height(int(ia), int(ja)), h10 = hf.height(int(ib), int(ja));
@@ -517,7 +518,7 @@ double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, i
     }
     return polylineAt(j0, j1, edgeTarget[side], j, [&hf, i](int s) { return double(hf.height(i, s)); });
   }
-  return target < 0 ? h : blockSurfaceAt(hf, i0, i1, j0, j1, target, i, j);
+  return target < 0 ? h : blockSurfaceAt(hf, i0, i1, j0, j1, target, oneQuadAntiDiagonal(qt, block), i, j);
 }
 
 double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,

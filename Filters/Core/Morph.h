@@ -11,8 +11,9 @@
 // - interior samples of a block at level m (strictly inside its border): toward the block's
 //   next valid level m' with its own edges, i.e. the grid C' x R' (edgeSamples at m') split
 //   along (i, j)-(i+1, j+1) diagonals, except, in a ring, the south-east and north-west
-//   corner cells, split along the other diagonal (Tessellate's corner triangles). Samples
-//   of level m' lie on that grid and do not move. Factor: the block's `blockT`.
+//   corner cells, split along the other diagonal (Tessellate's corner triangles), and a
+//   one-quad m' split along oneQuadAntiDiagonal's diagonal (Quadtree.h). Samples of level m'
+//   lie on that grid and do not move. Factor: the block's `blockT`.
 // - samples on a shared edge sampled at edge level n: toward the edge polyline at the edge's
 //   target level (the next valid level of the block(s) that set the edge level), by the
 //   edge's factor. One MorphEdge per shared edge, read by both blocks: the two sides cannot

@@ -87,8 +87,8 @@ void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
   }
   // Split the block range the same way the samples were split: children mirror the
   // recursive halving, so each child covers a contiguous range of bands.
-  const int cm = c1 - c0 > 1 ? c0 + (c1 - c0) / 2 : c1;
-  const int rm = r1 - r0 > 1 ? r0 + (r1 - r0) / 2 : r1;
+  const int cm = splitBand(c0, c1);
+  const int rm = splitBand(r0, r1);
   int ranges[4][4];
   int n = 0;
   const int cs[3] = { c0, cm, c1 };
@@ -143,6 +143,29 @@ std::vector<int> splitBands(int quads, int maxQuads)
   return starts;
 }
 
+namespace
+{
+void markUpperHalves(int b0, int b1, std::vector<uint8_t>& upper)
+{
+  if (b1 - b0 < 2)
+  {
+    return;
+  }
+  const int mid = splitBand(b0, b1);
+  std::fill(upper.begin() + b0, upper.begin() + mid, uint8_t(0));
+  std::fill(upper.begin() + mid, upper.begin() + b1, uint8_t(1));
+  markUpperHalves(b0, mid, upper);
+  markUpperHalves(mid, b1, upper);
+}
+} // namespace
+
+std::vector<uint8_t> upperHalfBands(int bands)
+{
+  std::vector<uint8_t> upper(static_cast<std::size_t>(std::max(bands, 0)), 0);
+  markUpperHalves(0, bands, upper);
+  return upper;
+}
+
 Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
 {
   Quadtree qt;
@@ -151,6 +174,8 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
   qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads);
   qt.blockCols = static_cast<int>(qt.colStart.size()) - 1;
   qt.blockRows = static_cast<int>(qt.rowStart.size()) - 1;
+  qt.colUpperHalf = upperHalfBands(qt.blockCols);
+  qt.rowUpperHalf = upperHalfBands(qt.blockRows);
   resizeOnHugePages(qt.blockBox, qt.blockCount());
   resizeOnHugePages(qt.blockHasNodata, qt.blockCount());
   // Rows of blocks in parallel: each writes its own blocks' entries.

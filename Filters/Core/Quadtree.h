@@ -47,6 +47,10 @@ struct Quadtree
   std::vector<QuadtreeNode> nodes; // nodes[0] is the root
   std::vector<Box> blockBox;       // per block, world bounds (z over valid samples)
   std::vector<uint8_t> blockHasNodata; // per block: any NaN sample inside (borders included)
+  // Per block column and per block row: 1 when the band is the upper half of the last split
+  // that separated it from its sibling (upperHalfBands), which gives every one-quad block
+  // its diagonal (oneQuadAntiDiagonal).
+  std::vector<uint8_t> colUpperHalf, rowUpperHalf;
 
   int blockCount() const { return blockCols * blockRows; }
   int blockIndex(int col, int row) const { return row * blockCols + col; }
@@ -93,6 +97,28 @@ std::string validateBlockSize(int maxBlockQuads);
 // Splits [0, quads] into bands of at most maxQuads quads by recursive halving (rounding
 // down). Returns band start positions plus the end (so size = bands + 1).
 std::vector<int> splitBands(int quads, int maxQuads);
+
+// Where buildQuadtree splits a node's range [begin, end) of block columns (or rows): the
+// first band of its upper half (end when the range is one band, which is not split).
+inline int splitBand(int begin, int end)
+{
+  return end - begin > 1 ? begin + (end - begin) / 2 : end;
+}
+
+// For each of `bands` bands (block columns or rows): 1 when it is the upper half of the
+// last split that separated it (splitBand). A dimension's ranges do not depend on the other's, so
+// in a node of 2 x 2 blocks each block's flags say which of its corners the four share.
+std::vector<uint8_t> upperHalfBands(int bands);
+
+// Whether block b, drawn as one quad (Levels.h), is split along its (i1, j0)-(i0, j1)
+// diagonal instead of (i0, j0)-(i1, j1): the one through the corner it shares with the other
+// blocks of a 2 x 2 node, the centre of that node's merged fan (Tessellate.h). Four one-quad
+// blocks then draw exactly their node's fan, so merging them moves nothing (a merge that
+// changed the surface would pop, geomorphing or not).
+inline bool oneQuadAntiDiagonal(const Quadtree& qt, int block)
+{
+  return qt.colUpperHalf[block % qt.blockCols] != qt.rowUpperHalf[block / qt.blockCols];
+}
 
 // Builds the quadtree. The heightfield must be valid and maxBlockQuads pass
 // validateBlockSize (a smaller value is raised to kMinBlockQuads, so no caller can build

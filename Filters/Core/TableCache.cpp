@@ -25,8 +25,10 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // the table's meaning or layout changes it, and older files are then rebuilt.
 // 2: merged-node errors; 3: merged nodes up to kExactMergedQuads wide have exact errors
 // (a version 2 file holds bounds there, which would make a small block size draw a finer
-// far field when its table comes from an old cache than when it is built).
-constexpr uint32_t kFormatVersion = 3;
+// far field when its table comes from an old cache than when it is built); 4: one-quad
+// blocks split along oneQuadAntiDiagonal's diagonal and merged fans centred on
+// mergedCentre (Tessellate.h), which changes those errors.
+constexpr uint32_t kFormatVersion = 4;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

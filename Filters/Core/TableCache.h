@@ -15,8 +15,9 @@
 // u64 heights hash, i32 nx, ny, block size, levels, pairs, blocks, u32 nodes,
 // f32 ownError[blocks * levels], f32 ownErrorExact[...], f32 stripError[blocks * 4 * pairs],
 // f32 mergedError[nodes], u64 checksum of everything before it. Version 2 added the
-// merged-node errors, version 3 made more of them exact (ErrorTable.h); an older file is
-// reported as such and rebuilt.
+// merged-node errors, version 3 made more of them exact (ErrorTable.h), version 4 follows
+// the one-quad diagonals and fan centres of Tessellate.h; an older file is reported as such
+// and rebuilt.
 #pragma once
 
 #include "ErrorTable.h"

@@ -260,7 +260,16 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     }
     if (shape == BlockShape::OneQuad)
     {
-      sink.quad(r.i0, r.j0, r.i1, r.j1);
+      if (oneQuadAntiDiagonal(qt, block))
+      {
+        // The quad split along its (i1, j0)-(i0, j1) diagonal.
+        sink.triangle({ r.i0, r.j0 }, { r.i1, r.j0 }, { r.i0, r.j1 });
+        sink.triangle({ r.i1, r.j0 }, { r.i1, r.j1 }, { r.i0, r.j1 });
+      }
+      else
+      {
+        sink.quad(r.i0, r.j0, r.i1, r.j1);
+      }
       return;
     }
     // Thin: the DEM is one quad wide or tall, so the long sides have no neighbours and the
@@ -360,6 +369,14 @@ bool mergeableNode(const Quadtree& qt, int node)
   return n.colEnd - n.colBegin >= 2 && n.rowEnd - n.rowBegin >= 2;
 }
 
+GridPoint mergedCentre(const Quadtree& qt, int node)
+{
+  // Where the quadtree splits the node's block columns and rows: a block corner strictly
+  // inside a mergeable node.
+  const QuadtreeNode& n = qt.nodes[node];
+  return GridPoint{ qt.colStart[splitBand(n.colBegin, n.colEnd)], qt.rowStart[splitBand(n.rowBegin, n.rowEnd)] };
+}
+
 void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)
 {
   out.clear();
@@ -386,9 +403,7 @@ void emitMergedTo(Sink& sink, const Quadtree& qt, int node, std::vector<GridPoin
     return;
   }
   mergedPerimeter(qt, node, perimeter);
-  const QuadtreeNode& n = qt.nodes[node];
-  const GridPoint centre{ (qt.colStart[n.colBegin] + qt.colStart[n.colEnd]) / 2,
-    (qt.rowStart[n.rowBegin] + qt.rowStart[n.rowEnd]) / 2 };
+  const GridPoint centre = mergedCentre(qt, node);
   for (std::size_t k = 0; k < perimeter.size(); ++k)
   {
     sink.triangle(centre, perimeter[k], perimeter[(k + 1) % perimeter.size()]);

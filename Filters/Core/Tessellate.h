@@ -94,9 +94,11 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
 void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out);
 
 // Merged nodes (hierarchical selection): a quadtree node drawn whole, far from the eye,
-// instead of one coarsest block per leaf. It is drawn as a fan from the sample nearest its
-// centre to its perimeter, and the perimeter passes through every block corner on the
-// node's border and nothing else. A block beside it draws that side with its corners only
+// instead of one coarsest block per leaf. It is drawn as a fan from the block corner its
+// children share (mergedCentre) to its perimeter, and the perimeter passes through every
+// block corner on the node's border and nothing else. Over 2 x 2 blocks the fan is exactly
+// its four blocks drawn as one quad each (oneQuadAntiDiagonal, Quadtree.h), so merging
+// them, or splitting the node back into them, changes nothing drawn. A block beside it draws that side with its corners only
 // (the edge at the block's top level), and a merged neighbour has the same points along
 // the shared line (band boundaries are global), so no crack or T-junction can appear. The
 // fan does not depend on the neighbours: its error is one number per node (ErrorTable).
@@ -113,6 +115,10 @@ inline bool drawnLevel(int level)
 // True when `node` may be drawn whole: a node over at least 2 x 2 blocks (fewer
 // triangles than its blocks at their coarsest, and a centre sample strictly inside).
 bool mergeableNode(const Quadtree& qt, int node);
+
+// The apex of a mergeable node's fan: the block corner where the quadtree splits it into
+// its children (the sample nearest its centre when its blocks are alike).
+GridPoint mergedCentre(const Quadtree& qt, int node);
 
 // The perimeter of a node, counter-clockwise in (i, j) from its south-west corner: every
 // block corner on its border, corners included, each once.

@@ -205,3 +205,12 @@ TEST(Levels, EdgeSamples)
         EXPECT_EQ(gmm::edgeSampleCount(first, last, m), static_cast<int>(expect.size()));
       }
 }
+
+TEST(Quadtree, UpperHalfBandsByHand)
+{
+  // [0, 5) halves at 2; [0, 2) at 1; [2, 5) at 3, then [3, 5) at 4.
+  EXPECT_EQ(gmm::upperHalfBands(5), (std::vector<uint8_t>{ 0, 1, 0, 0, 1 }));
+  EXPECT_EQ(gmm::upperHalfBands(4), (std::vector<uint8_t>{ 0, 1, 0, 1 }));
+  EXPECT_EQ(gmm::upperHalfBands(1), (std::vector<uint8_t>{ 0 }));
+  EXPECT_TRUE(gmm::upperHalfBands(0).empty());
+}

@@ -11,8 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <iostream>
+#include <set>
 #include <utility>
 
 using namespace gmmtest;
@@ -408,4 +410,73 @@ TEST(Watertight, EngineUpdateMinimumBlockSize)
             << " with coarse/fine neighbours, " << mergedFrames << " with merged nodes beside single blocks\n";
   EXPECT_GT(mixedFrames, frames / 4);
   EXPECT_GT(mergedFrames, frames / 10);
+}
+
+namespace
+{
+// A triangle as a key independent of which vertex is listed first (orientation kept).
+std::array<int, 6> triangleKey(const gmm::GridTriangle& t)
+{
+  int first = 0;
+  for (int k = 1; k < 3; ++k)
+  {
+    const gmm::GridPoint& a = t.v[k];
+    const gmm::GridPoint& b = t.v[first];
+    if (a.j < b.j || (a.j == b.j && a.i < b.i))
+    {
+      first = k;
+    }
+  }
+  std::array<int, 6> key{};
+  for (int k = 0; k < 3; ++k)
+  {
+    key[2 * k] = t.v[(first + k) % 3].i;
+    key[2 * k + 1] = t.v[(first + k) % 3].j;
+  }
+  return key;
+}
+} // namespace
+
+// Merging a node of 2 x 2 one-quad blocks must not change the surface (geomorphing merges
+// on its path relies on it): the node's fan is exactly its four blocks at their top level,
+// on quadtrees of equal and unequal bands.
+TEST(Watertight, TwoByTwoFanIsItsOneQuadBlocks)
+{
+  Rng rng(11);
+  const int sizes[][2] = { { 65, 65 }, { 66, 67 }, { 131, 97 }, { 300, 211 }, { 257, 129 } };
+  int checked = 0;
+  for (auto& s : sizes)
+    for (int maxQ : { 4, 7, 16, 32 })
+    {
+      const gmm::Heightfield hf = roughTerrain(s[0], s[1], rng);
+      const gmm::Quadtree qt = gmm::buildQuadtree(hf, maxQ);
+      for (int node = 0; node < static_cast<int>(qt.nodes.size()); ++node)
+      {
+        const gmm::QuadtreeNode& n = qt.nodes[node];
+        if (n.colEnd - n.colBegin != 2 || n.rowEnd - n.rowBegin != 2)
+        {
+          continue;
+        }
+        std::vector<gmm::GridTriangle> fan, blocks;
+        gmm::emitMergedNodeGrid(qt, node, fan);
+        gmm::EmitScratch scratch;
+        for (int r = n.rowBegin; r < n.rowEnd; ++r)
+          for (int c = n.colBegin; c < n.colEnd; ++c)
+          {
+            const int b = qt.blockIndex(c, r);
+            gmm::BlockConfig cfg;
+            cfg.level = gmm::topLevel(qt.blockWidth(b), qt.blockHeight(b));
+            cfg.edgeLevel = { cfg.level, cfg.level, cfg.level, cfg.level };
+            gmm::emitBlockGrid(qt, b, cfg, gmm::BlockPart::Whole, blocks, scratch);
+          }
+        std::set<std::array<int, 6>> a, b;
+        for (const auto& t : fan)
+          a.insert(triangleKey(t));
+        for (const auto& t : blocks)
+          b.insert(triangleKey(t));
+        ASSERT_EQ(a, b) << s[0] << " x " << s[1] << ", block " << maxQ << ", node " << node;
+        ++checked;
+      }
+    }
+  EXPECT_GT(checked, 50);
 }
