@@ -127,6 +127,7 @@ int vtkGeoMipMapFilter::RequestData(
     }
     // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
     in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
+    in.Engine.setMergeOnPath(this->GeomorphMerges);
     stats = &in.Engine.update(view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget));
   }
   // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.
@@ -308,5 +309,6 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
   os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";
+  os << indent << "GeomorphMerges: " << this->GeomorphMerges << "\n";
   os << indent << "ModelMatrix: " << this->ModelMatrix << "\n";
 }

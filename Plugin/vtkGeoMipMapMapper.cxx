@@ -217,6 +217,15 @@ void vtkGeoMipMapMapper::SetGeomorphRange(double range)
   }
 }
 
+void vtkGeoMipMapMapper::SetGeomorphMerges(bool on)
+{
+  if (on != this->GeomorphMerges)
+  {
+    this->GeomorphMerges = on;
+    this->ModifiedIndicesOnly();
+  }
+}
+
 void vtkGeoMipMapMapper::SetTriangleBudget(vtkIdType budget)
 {
   if (budget < 0)
@@ -593,6 +602,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     const auto start = Clock::now();
     // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
     in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
+    in.Engine.setMergeOnPath(this->GeomorphMerges);
     in.Engine.update(view, this->PixelError, budget);
     this->LastUpdateTime = SecondsSince(start);
     in.HasSelection = in.Engine.lastError().empty();
@@ -1154,6 +1164,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
   os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";
+  os << indent << "GeomorphMerges: " << this->GeomorphMerges << "\n";
   os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
   os << indent << "FollowAllocatedRenderTime: " << this->FollowAllocatedRenderTime << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";

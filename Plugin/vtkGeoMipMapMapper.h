@@ -293,6 +293,27 @@ public:
 
   ///@{
   /**
+   * Geomorph merges too (off by default): while geomorphing, far terrain is drawn as a
+   * merged quadtree node only where the node's blocks have reached their coarsest level on
+   * the geomorphing path. A node over 2 x 2 blocks then draws exactly what its blocks
+   * drew, so merging and splitting it moves nothing (nodes of more blocks replace their
+   * children's fans by one, which still moves a little). With it off, a merge replaces
+   * blocks that the path still holds several levels finer, and the surface jumps by up to
+   * about PixelError (measured on measure_popping.py's flights at PixelError 2 and the
+   * default block size, the worst jump between frames is 1.87 px over a fractal terrain
+   * and 1.56 px over Puget Sound, against 0.53 and 0.58 px with this on, for 0.4 and 1.6 %
+   * more triangles). The price is in wide views, where blocks stay finer for longer: a
+   * flight with a whole 16385^2 DEM ahead at PixelError 1 draws 3.1x the triangles and its
+   * LOD update takes 31 ms instead of 0.5 ms; 1.4x and 2.9 ms instead of 1.0 ms at 4097^2
+   * (Documentation/benchmarks-core.md, session 9).
+   */
+  void SetGeomorphMerges(bool on);
+  vtkGetMacro(GeomorphMerges, bool);
+  vtkBooleanMacro(GeomorphMerges, bool);
+  ///@}
+
+  ///@{
+  /**
    * Triangle budget of every frame (0, the default: none). The engine refines the drawn
    * block with the largest projected error until the next refinement would exceed the
    * budget or every error is within PixelError, whichever comes first
@@ -527,6 +548,7 @@ protected:
   bool FreezeLevelOfDetail = false;
   bool Geomorphing = true;
   double GeomorphRange; // gmm::kDefaultMorphRange
+  bool GeomorphMerges = false;
   bool LastFrameFrozen = false; // the last RenderPiece kept the frozen selection
   vtkIdType TriangleBudget = 0;
   bool FollowAllocatedRenderTime = false;

@@ -103,6 +103,12 @@ public:
   // within tau. Budgeted and view-independent frames never follow it.
   void setMorphRange(double range) { ramp_.range = range; }
   double morphRange() const { return ramp_.range; }
+  // Merging on the path (SelectNodes.h, MorphRamp::mergeOnPath): while update follows the
+  // path, a quadtree node is drawn whole only where its blocks have reached their top level
+  // on it, so that merges and splits do not skip levels. Off by default: it holds blocks
+  // finer in wide views (Documentation/benchmarks-core.md, session 9).
+  void setMergeOnPath(bool on) { ramp_.mergeOnPath = on; }
+  bool mergeOnPath() const { return ramp_.mergeOnPath; }
   // The path of the last frame, or null when it did not follow one.
   const MorphRamp* morphRamp() const { return rampCurrent_ ? &ramp_ : nullptr; }
 

@@ -84,6 +84,73 @@ double rampPathFloor(int j, double errorJ, double budget, double s)
   return j - 1 + std::min({ 1.0, s, budget / errorJ });
 }
 
+double rampTopBudget(const double* error, int count, double s)
+{
+  if (count <= 1)
+  {
+    return 0.0;
+  }
+  const int top = count - 1;
+  double x = error[top];
+  for (int k = 0; k < top; ++k)
+  {
+    const double dE = error[k + 1] - error[k];
+    if (!(dE > 0.0))
+    {
+      continue; // a jump of lambda_max: no candidate inside
+    }
+    // The candidate reaches `top` where x >= y exp((top - k - (y - E_k) / dE) / s); the
+    // logarithm of the right side is concave in y, largest at y = s dE.
+    const double y = std::min(std::max(s * dE, error[k]), error[k + 1]);
+    if (y > 0.0)
+    {
+      x = std::max(x, y * std::exp((top - k - (y - error[k]) / dE) / s));
+    }
+  }
+  return x;
+}
+
+double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ramp, int node)
+{
+  if (!(ramp.nodeTopRange == ramp.range) || ramp.nodeTop.size() != qt.nodes.size())
+  {
+    ramp.nodeTop.assign(qt.nodes.size(), std::numeric_limits<double>::quiet_NaN());
+    ramp.nodeTopRange = ramp.range;
+  }
+  double& memo = ramp.nodeTop[node];
+  if (!std::isnan(memo))
+  {
+    return memo;
+  }
+  const QuadtreeNode& n = qt.nodes[node];
+  double x = 0.0;
+  if (n.childCount == 0)
+  {
+    MorphChain chain;
+    const int links = morphChain(qt, n.block, chain);
+    std::array<double, 32> error{};
+    int count = 0;
+    while (count < links)
+    {
+      const double e = t.own(n.block, chain[count]);
+      if (!(e <= std::numeric_limits<double>::max()))
+      {
+        break;
+      }
+      error[count++] = e;
+    }
+    // A chain cut short by nodata never reaches the block's top level.
+    x = count == links ? rampTopBudget(error.data(), count, ramp.slope())
+                       : std::numeric_limits<double>::infinity();
+  }
+  for (int k = 0; k < n.childCount; ++k)
+  {
+    x = std::max(x, rampNodeTopBudget(qt, t, ramp, n.firstChild + k));
+  }
+  memo = x;
+  return x;
+}
+
 int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor)
 {
   const int k = std::min(std::max(static_cast<int>(lambda), 0), std::max(count - 1, 0));

@@ -53,9 +53,15 @@ struct MorphRamp
 {
   double range = 0.0;          // input: finite and > 1 follows the path, else plain
                                // coarsest-within-tau (NaN, +inf and <= 1 alike)
+  bool mergeOnPath = false;    // input: merged nodes only where rampNodeTopBudget allows
+                               // (SelectNodes.h), while the path is followed
   std::vector<int8_t> level;   // the path's level (the selection may refine it further)
   std::vector<float> factor;   // the path's morph factor toward the next level, in [0, 1]
   std::vector<double> lambda;  // the path's continuous level (index into the block's chain)
+  // Per quadtree node, memo of rampNodeTopBudget (NaN: not computed yet) for the range
+  // `nodeTopRange`; the engine clears it when its terrain changes.
+  std::vector<double> nodeTop;
+  double nodeTopRange = std::numeric_limits<double>::quiet_NaN();
   bool active() const { return range > 1.0 && range <= std::numeric_limits<double>::max(); }
   // rampSlope(range), remembered: a frame asks it for every block and neighbour.
   double slope() const
@@ -88,6 +94,22 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
 // (finite, > 0) at j, whatever the errors above: j - 1 + min(1, s, budget / errorJ). No
 // logarithm: it lets a caller skip a path that cannot come below a level it already has.
 double rampPathFloor(int j, double errorJ, double budget, double s);
+
+// The smallest budget at which rampPathWithSlope(error, count, budget, s) reaches the end of
+// the chain, count - 1: the largest of error[count - 1] and, over each rising segment k,
+// the budget x whose candidate k + (y - E_k) / dE + s ln(x / y) reaches count - 1 at the
+// segment's worst y (s dE, clamped to the segment), since the path is the least of those
+// candidates and non-decreasing in the budget.
+double rampTopBudget(const double* error, int count, double s);
+
+// Merging on the path (SelectNodes.h): the smallest error budget at which every block below
+// quadtree node `node` is at its top level on its own path (rampedLambda), +inf when one of
+// them never is (nodata). A node's projection factor is at least each of its blocks' (its
+// box holds theirs; up to rounding), so a node whose budget is at least this has all its
+// blocks at their top level: merging it then replaces one-quad blocks, which a 2 x 2 node draws exactly
+// (Tessellate.h), instead of blocks several levels finer, which popped. Memoised in `ramp`
+// (for its range) and computed only for the nodes asked about.
+double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ramp, int node);
 
 // Position of valid level `level` on the block's chain (the computeMorph rise limit's
 // continuous level is this plus the factor).

@@ -15,7 +15,7 @@ class Walk
 {
 public:
   Walk(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
-    const BoxProjector* projector, double tau, NodeSelection& out, NodeScratch& ns)
+    const BoxProjector* projector, double tau, NodeSelection& out, NodeScratch& ns, MorphRamp* ramp)
     : qt_(qt)
     , table_(table)
     , frustum_(frustum)
@@ -23,6 +23,7 @@ public:
     , tau_(tau)
     , out_(out)
     , ns_(ns)
+    , mergeGate_(ramp && ramp->active() && ramp->mergeOnPath ? ramp : nullptr)
   {
   }
 
@@ -51,7 +52,10 @@ public:
     if (!ns_.split[index] && e < std::numeric_limits<float>::infinity())
     {
       const double f = factorOf(n.box);
-      if (e <= errorBudget(tau_, f))
+      const double budget = errorBudget(tau_, f);
+      // Merging on geomorphing's path: only once the node's blocks have reached their top
+      // level (rampNodeTopBudget), so that the merge does not skip levels.
+      if (e <= budget && (!mergeGate_ || rampNodeTopBudget(qt_, table_, *mergeGate_, index) <= budget))
       {
         merge(index, f);
         return;
@@ -125,6 +129,7 @@ private:
   double tau_;
   NodeSelection& out_;
   NodeScratch& ns_;
+  MorphRamp* mergeGate_; // the path, when merges wait for it (MorphRamp::mergeOnPath)
 };
 
 } // namespace
@@ -154,7 +159,7 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   {
     return;
   }
-  Walk walk(qt, table, frustum, projector, tau, out, ns);
+  Walk walk(qt, table, frustum, projector, tau, out, ns, ramp);
   walk.node(0, false);
   for (;;)
   {

@@ -13,7 +13,8 @@
 // for leaf sizes 16 .. 256, engine default and mapper default.
 // BM_LodFlightMapperDefault: the whole-DEM flight with the CPU work the mapper does per frame
 // by default: Engine::update on geomorphing's level path (kDefaultMorphRange) and
-// computeMorph over the drawn blocks (the mapper draws the index arena: no concatenation).
+// computeMorph over the drawn blocks (the mapper draws the index arena: no concatenation);
+// GEOMIPMAP_BENCH_MERGE_ON_PATH=1 adds the mapper's SetGeomorphMerges (Engine::setMergeOnPath).
 // Scene: synthetic terrain (gmm::makeSyntheticTerrain, 30 m spacing, seed 42), camera flying
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
@@ -173,6 +174,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
       v.farDistance = farDistance;
   gmm::Engine& e = *s.engine;
   e.setMorphRange(mapperDefault ? gmm::kDefaultMorphRange : 0.0);
+  e.setMergeOnPath(mapperDefault && envInt("GEOMIPMAP_BENCH_MERGE_ON_PATH", 0) != 0);
   gmm::MorphCache morphCache;
   gmm::MorphFrame morph;
   std::size_t frame = 0, triangles = 0, reused = 0, visible = 0, regenFrames = 0;

@@ -2,12 +2,13 @@
 
     /usr/bin/python3 measure_popping.py [--dem FILE.png --spacing M --zscale S] [--n 1025]
         [--tau 2] [--frames 120] [--step 0.02] [--block 64] [--size 1280x720] [--range R]
-        [--quick]
+        [--merges] [--quick]
 
 The terrain: a 16-bit PNG DEM (e.g. ../shared/data/ps_height_1k.png, --spacing 160
 --zscale 0.1) or, by default, vtkGeoMipMapFractalSource (n x n, 30 m, seed 1). The camera
 flies a straight line across the middle of the terrain, --step blocks (block size x
 spacing) per frame, at 250 m above the highest summit, looking ahead and 20 degrees down.
+--merges turns on SetGeomorphMerges (merges wait for the geomorphing path) in both modes.
 
 Popping of frame k: vtkGeoMipMapScreenError with frame k's mesh (vtkGeoMipMapFilter's
 output for frame k's camera: morphed heights when geomorphing) against frame k-1's mesh as
@@ -101,6 +102,7 @@ def main(argv):
         filt.SetGeomorphing(mode == "on")
         if "--range" in argv:
             filt.SetGeomorphRange(arg(argv, "--range", 3.0))
+        filt.SetGeomorphMerges("--merges" in argv)
         prev = None
         pops, p99s, errors, times, tris = [], [], [], [], []
         for f in range(frames):
@@ -152,6 +154,7 @@ def main(argv):
             mapper.SetGeomorphing(mode == "on")
             if "--range" in argv:
                 mapper.SetGeomorphRange(arg(argv, "--range", 3.0))
+            mapper.SetGeomorphMerges("--merges" in argv)
             actor = vtkActor()
             actor.SetMapper(mapper)
             ren = vtkRenderer()

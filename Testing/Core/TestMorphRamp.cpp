@@ -156,14 +156,17 @@ struct FlightOutcome
   std::size_t triangles = 0;
 };
 
-// A slow, low flight over `hf` (as Testing/Benchmarks/measure_popping.py: 0.02 block a frame,
-// 250 m above the highest sample, 20 degrees down), drawn as the mapper draws it: engine
-// update, then computeMorph with the same cache every frame.
-FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double range, int frames)
+// A slow, low flight over `hf` (as Testing/Benchmarks/measure_popping.py: `stepBlocks` block a
+// frame, 250 m above the highest sample, 20 degrees down), drawn as the mapper draws it:
+// engine update (merges on the path when `mergeOnPath`), then computeMorph with the same
+// cache every frame.
+FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double range, int frames,
+  double stepBlocks = 0.02, bool mergeOnPath = false)
 {
   gmm::Engine e;
   EXPECT_EQ(e.setHeightfield(input, block, 1), "");
   e.setMorphRange(range);
+  e.setMergeOnPath(mergeOnPath);
   const gmm::Heightfield& hf = e.heightfield();
   const double top = *std::max_element(hf.z.begin(), hf.z.end());
   const double ext = (hf.nx - 1) * hf.dx, pitch = 20.0 * 3.14159265358979323846 / 180.0;
@@ -173,7 +176,7 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
   for (int f = 0; f < frames; ++f)
   {
     gmm::View v;
-    v.eye = { 0.1 * ext + f * 0.02 * block * hf.dx, 0.5 * (hf.ny - 1) * hf.dy, top + 250.0 };
+    v.eye = { 0.1 * ext + f * stepBlocks * block * hf.dx, 0.5 * (hf.ny - 1) * hf.dy, top + 250.0 };
     v.forward = { std::cos(pitch), 0.0, -std::sin(pitch) };
     v.up = { 0, 0, 1 };
     v.fovYDegrees = 50.0;
@@ -235,6 +238,27 @@ TEST(MorphRamp, FlightCertifiedAndSmooth)
 }
 
 // A range that is not finite and > 1 follows no path: the same levels as no range at all.
+// measure_popping.py's flight at the default block size: far terrain merges and splits
+// there, and a merge replaced blocks that the path still held several levels finer (1.3 -
+// 1.9 px). Merging on the path waits until the blocks are at their top level, which a node
+// of 2 x 2 blocks draws exactly, so the merge itself moves nothing.
+TEST(MorphRamp, MergesOnThePathDoNotPop)
+{
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(1025, 1025, 30.0, 1, 1500.0, 1);
+  const double tau = 2.0;
+  const int frames = 40;
+  const FlightOutcome free = fly(hf, 32, tau, gmm::kDefaultMorphRange, frames, 0.04, false);
+  const FlightOutcome onPath = fly(hf, 32, tau, gmm::kDefaultMorphRange, frames, 0.04, true);
+  std::printf("[ ramp ] 1025^2, block 32, tau 2, %d frames: worst pop %.3f px with merges on the "
+              "path, %.3f without; mean of frame worst %.3f (%.3f); measured error %.3f (%.3f) px; "
+              "triangles %zu (%zu)\n",
+    frames, onPath.worstPop, free.worstPop, onPath.meanPop, free.meanPop, onPath.worstError,
+    free.worstError, onPath.triangles, free.triangles);
+  EXPECT_GT(free.worstPop, 1.0); // the flight sees merges pop
+  EXPECT_LE(onPath.worstPop, 0.55);
+  EXPECT_LE(onPath.worstError, tau);
+}
+
 TEST(MorphRamp, OnlyAFiniteRangeAboveOneFollowsThePath)
 {
   const gmm::Heightfield hf = gmm::makeSyntheticTerrain(513, 513, 30.0, 1, 1500.0, 1);
@@ -385,3 +409,4 @@ TEST(MorphRamp, ChainFollowsNextValidLevel)
       }
     }
 }
+

@@ -209,6 +209,32 @@ check(np.count_nonzero(seen2) > 0.3 * W * H and off2 <= 0.002 * np.count_nonzero
       f"morph ({off2} of {np.count_nonzero(seen2)} pixels differ in depth)")
 mapper.SetInputData(image)
 
+# Block 8, with merges waiting for the geomorphing path (SetGeomorphMerges) on both: most
+# blocks in view then morph toward their top level, one quad, split along the diagonal
+# gmm::oneQuadAntiDiagonal picks for the block, and the shader must split it the same way
+# (with the shader's split always along (i0, j0)-(i1, j1), 301 pixels differ here; with
+# merges off, too few blocks morph that way to tell).
+mapper.SetBlockSize(8)
+mapper.GeomorphMergesOn()
+win.Render()
+gpu8 = refscene.depth(win)
+f8 = new_filter(TAU, cam)
+f8.SetBlockSize(8)
+f8.GeomorphMergesOn()
+f8.Update()
+cpu8 = depth_of(refscene.stock_actor(f8.GetOutput()))
+seen8 = cpu8 < 1.0
+off8 = np.count_nonzero(np.abs(gpu8 - cpu8)[seen8] > eps)
+check(mapper.GetNumberOfRenderedTriangles() == f8.GetOutput().GetNumberOfPolys(),
+      f"block 8, merges on the path: mapper {mapper.GetNumberOfRenderedTriangles()} triangles, "
+      f"filter {f8.GetOutput().GetNumberOfPolys()}")
+check(np.count_nonzero(seen8) > 0.3 * W * H and off8 <= 0.0005 * np.count_nonzero(seen8),
+      f"block 8, merges on the path: GPU morph = CPU morph ({off8} of {np.count_nonzero(seen8)} "
+      f"pixels differ in depth)")
+check_within_tau(check, image, ren, actor, mapper, "block 8, merges on the path")
+mapper.SetBlockSize(BLOCK)
+mapper.GeomorphMergesOff()
+
 mapper.GeomorphingOff()
 win.Render()
 gpu_plain = refscene.depth(win)

@@ -85,10 +85,10 @@ class Measured:
 
 
 def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0,
-             geomorphing=True):
+             geomorphing=True, geomorph_merges=False):
     """vtkGeoMipMapFilter's triangles for this camera, viewport size (w, h), tau, block
-    size, actor matrix (None: identity), height scale and geomorphing: what the mapper draws
-    with them."""
+    size, actor matrix (None: identity), height scale, geomorphing and geomorph merges: what
+    the mapper draws with them."""
     import geomipmap
 
     filt = geomipmap.vtkGeoMipMapFilter()
@@ -100,6 +100,7 @@ def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0
     filt.SetBlockSize(block_size)
     filt.SetHeightScale(height_scale)
     filt.SetGeomorphing(geomorphing)
+    filt.SetGeomorphMerges(geomorph_merges)
     filt.Update()
     return filt.GetOutput()
 
@@ -115,7 +116,7 @@ def measure_drawn(image, ren, actor, tau, block_size):
     w, h = ren.GetSize()
     height_scale = actor.GetMapper().GetHeightScale()
     mesh = lod_mesh(image, ren.GetActiveCamera(), (w, h), tau, block_size, matrix, height_scale,
-                    actor.GetMapper().GetGeomorphing())
+                    actor.GetMapper().GetGeomorphing(), actor.GetMapper().GetGeomorphMerges())
     clip = vtkMatrix4x4()
     clip.DeepCopy(ren.GetActiveCamera().GetCompositeProjectionTransformMatrix(
         ren.GetTiledAspectRatio(), -1, 1))
