@@ -170,20 +170,11 @@ public:
 
   ///@{
   /**
-   * Geomorph merges too (off by default; as vtkGeoMipMapMapper::SetGeomorphMerges): while
-   * geomorphing, far terrain is drawn as a merged quadtree node only where the node's
-   * blocks have reached their coarsest level on the geomorphing path. A node over 2 x 2
-   * blocks then draws exactly what its blocks drew, so merging and splitting it moves
-   * nothing (nodes of more blocks replace their children's fans by one, which still moves
-   * a little). With it off, a merge replaces blocks that the path still holds several
-   * levels finer, and the surface jumps by up to about PixelError (measured on
-   * measure_popping.py's flights at PixelError 2 and the default block size, the worst
-   * jump between frames is 1.87 px over a fractal terrain and 1.56 px over Puget Sound,
-   * against 0.53 and 0.58 px with this on, for 0.4 and 1.6 % more triangles). The price is
-   * in wide views, where blocks stay finer for longer: a flight with a whole 16385^2 DEM
-   * ahead at PixelError 1 draws 3.1x the triangles and its LOD update takes 31 ms instead
-   * of 0.5 ms; 1.4x and 2.9 ms instead of 1.0 ms at 4097^2 
-   * (Documentation/benchmarks-core.md, session 9).
+   * Geomorph merges too (off by default; as vtkGeoMipMapMapper::SetGeomorphMerges, which
+   * has the measured pops and costs): while geomorphing, far terrain is drawn as a merged
+   * quadtree node only where the node's blocks have reached their coarsest level on the
+   * geomorphing path, so that a merge or a split does not skip the path's levels. Costly in
+   * wide views of large DEMs.
    */
   vtkSetMacro(GeomorphMerges, bool);
   vtkGetMacro(GeomorphMerges, bool);

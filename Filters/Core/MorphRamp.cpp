@@ -110,6 +110,36 @@ double rampTopBudget(const double* error, int count, double s)
   return x;
 }
 
+namespace
+{
+// The chain's errors errorOf(level) into `error`, up to the first level that is not allowed
+// (+inf: nodata ends the chain). Returns how many.
+template <typename ErrorOf>
+int chainErrors(const MorphChain& chain, int links, ErrorOf errorOf, std::array<double, 32>& error)
+{
+  int count = 0;
+  while (count < links)
+  {
+    const double e = errorOf(chain[count]);
+    if (!(e <= std::numeric_limits<double>::max()))
+    {
+      break;
+    }
+    error[count++] = e;
+  }
+  return count;
+}
+
+// rampPath over the chain's errors errorOf(level) (chainErrors).
+template <typename ErrorOf>
+double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double slope)
+{
+  std::array<double, 32> error{};
+  const int count = chainErrors(chain, links, errorOf, error);
+  return rampPathWithSlope(error.data(), count, budget, slope);
+}
+} // namespace
+
 double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ramp, int node)
 {
   if (!(ramp.nodeTopRange == ramp.range) || ramp.nodeTop.size() != qt.nodes.size())
@@ -129,16 +159,7 @@ double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ram
     MorphChain chain;
     const int links = morphChain(qt, n.block, chain);
     std::array<double, 32> error{};
-    int count = 0;
-    while (count < links)
-    {
-      const double e = t.own(n.block, chain[count]);
-      if (!(e <= std::numeric_limits<double>::max()))
-      {
-        break;
-      }
-      error[count++] = e;
-    }
+    const int count = chainErrors(chain, links, [&](int m) { return double(t.own(n.block, m)); }, error);
     // A chain cut short by nodata never reaches the block's top level.
     x = count == links ? rampTopBudget(error.data(), count, ramp.slope())
                        : std::numeric_limits<double>::infinity();
@@ -157,28 +178,6 @@ int levelOnChain(const MorphChain& chain, int count, double lambda, float& facto
   factor = k + 1 < count ? static_cast<float>(std::min(std::max(lambda - k, 0.0), 1.0)) : 0.0f;
   return count > 0 ? chain[k] : 0;
 }
-
-namespace
-{
-// rampPath over the chain's errors errorOf(level), which end at the first level that is not
-// allowed (+inf).
-template <typename ErrorOf>
-double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double slope)
-{
-  std::array<double, 32> error{};
-  int count = 0;
-  while (count < links)
-  {
-    const double e = errorOf(chain[count]);
-    if (!(e <= std::numeric_limits<double>::max()))
-    {
-      break; // not allowed (nodata): the chain ends
-    }
-    error[count++] = e;
-  }
-  return rampPathWithSlope(error.data(), count, budget, slope);
-}
-} // namespace
 
 int chainIndex(const Quadtree& qt, int block, int level)
 {

@@ -106,9 +106,9 @@ double rampTopBudget(const double* error, int count, double s);
 // quadtree node `node` is at its top level on its own path (rampedLambda), +inf when one of
 // them never is (nodata). A node's projection factor is at least each of its blocks' (its
 // box holds theirs; up to rounding), so a node whose budget is at least this has all its
-// blocks at their top level: merging it then replaces one-quad blocks, which a 2 x 2 node draws exactly
-// (Tessellate.h), instead of blocks several levels finer, which popped. Memoised in `ramp`
-// (for its range) and computed only for the nodes asked about.
+// blocks at their top level: merging it then replaces one-quad blocks, which a 2 x 2 node
+// draws exactly (Tessellate.h), instead of blocks several levels finer, which popped.
+// Memoised in `ramp` (for its range) and computed only for the nodes asked about.
 double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ramp, int node);
 
 // Position of valid level `level` on the block's chain (the computeMorph rise limit's

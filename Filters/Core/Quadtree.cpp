@@ -145,24 +145,28 @@ std::vector<int> splitBands(int quads, int maxQuads)
 
 namespace
 {
-void markUpperHalves(int b0, int b1, std::vector<uint8_t>& upper)
+// Bands [b0, b1), the upper half of their parent's split when `isUpper`: each band gets
+// the flag of the split that makes it a range of one.
+void markUpperHalves(int b0, int b1, uint8_t isUpper, std::vector<uint8_t>& upper)
 {
-  if (b1 - b0 < 2)
+  if (b1 - b0 == 1)
   {
+    upper[b0] = isUpper;
     return;
   }
   const int mid = splitBand(b0, b1);
-  std::fill(upper.begin() + b0, upper.begin() + mid, uint8_t(0));
-  std::fill(upper.begin() + mid, upper.begin() + b1, uint8_t(1));
-  markUpperHalves(b0, mid, upper);
-  markUpperHalves(mid, b1, upper);
+  markUpperHalves(b0, mid, 0, upper);
+  markUpperHalves(mid, b1, 1, upper);
 }
 } // namespace
 
 std::vector<uint8_t> upperHalfBands(int bands)
 {
   std::vector<uint8_t> upper(static_cast<std::size_t>(std::max(bands, 0)), 0);
-  markUpperHalves(0, bands, upper);
+  if (bands > 0)
+  {
+    markUpperHalves(0, bands, 0, upper);
+  }
   return upper;
 }
 

@@ -106,8 +106,9 @@ inline int splitBand(int begin, int end)
 }
 
 // For each of `bands` bands (block columns or rows): 1 when it is the upper half of the
-// last split that separated it (splitBand). A dimension's ranges do not depend on the other's, so
-// in a node of 2 x 2 blocks each block's flags say which of its corners the four share.
+// last split that separated it (splitBand). A dimension's ranges do not depend on the
+// other's, so in a node of 2 x 2 blocks each block's flags say which of its corners the
+// four share.
 std::vector<uint8_t> upperHalfBands(int bands);
 
 // Whether block b, drawn as one quad (Levels.h), is split along its (i1, j0)-(i0, j1)

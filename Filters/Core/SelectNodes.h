@@ -7,10 +7,11 @@
 // budget, or geomorphing's path when `ramp` is active, then fixStrips). With the path's
 // mergeOnPath set, a node is drawn whole only where its blocks would all be at their top
 // level on the path (rampNodeTopBudget, MorphRamp.h): merging is then the path's last step
-// instead of a jump over several levels. A block beside a merged node draws that side with its corners
-// only; when that strip does not fit the block's budget, the merged node is split (its
-// children are walked in turn) and the blocks are re-checked, until every drawn block and
-// every merged node fits. Each split goes one level down the quadtree, so this ends.
+// instead of a jump over several levels. A block beside a merged node draws that side with
+// its corners only; when that strip does not fit the block's budget, the merged node is
+// split (its children are walked in turn) and the blocks are re-checked, until every drawn
+// block and every merged node fits. Each split goes one level down the quadtree, so this
+// ends.
 #pragma once
 
 #include "ErrorTable.h"
