@@ -135,12 +135,77 @@ std::string validateBlockSize(int maxBlockQuads)
     std::to_string(kMinBlockQuads) + " quads";
 }
 
-std::vector<int> splitBands(int quads, int maxQuads)
+std::vector<int> splitBands(int quads, int maxQuads, int lowCollar, int highCollar)
 {
+  lowCollar = std::max(lowCollar, 0);
+  highCollar = std::max(highCollar, 0);
+  if (quads - lowCollar - highCollar < kMinBlockQuads)
+  {
+    lowCollar = highCollar = 0;
+  }
   std::vector<int> starts;
-  splitInto(0, quads, std::max(1, maxQuads), starts);
+  if (lowCollar > 0)
+  {
+    starts.push_back(0);
+  }
+  splitInto(lowCollar, quads - highCollar, std::max(1, maxQuads), starts);
+  if (highCollar > 0)
+  {
+    starts.push_back(quads - highCollar);
+  }
   starts.push_back(quads);
   return starts;
+}
+
+namespace
+{
+// The collar of one side (Quadtree.h, nodataCollar) over the lines [first, last] across
+// it: one more than the longest run of nodata from the border, counting only runs shorter
+// than `limit`. Sample k of line l is at(l, k); each line has `length` samples.
+template <typename At>
+int collarWidth(int first, int last, int length, int limit, At at)
+{
+  int widest = 0;
+  for (int l = first; l <= last; ++l)
+  {
+    int run = 0;
+    while (run < length && run < limit && std::isnan(at(l, run)))
+    {
+      ++run;
+    }
+    if (run < limit)
+    {
+      widest = std::max(widest, run);
+    }
+  }
+  return widest > 0 ? widest + 1 : 0;
+}
+} // namespace
+
+NodataCollar nodataCollar(const Heightfield& hf, int maxBlockQuads)
+{
+  NodataCollar c;
+  const int limit = std::max(kMinBlockQuads, maxBlockQuads) - kMinBlockQuads;
+  if (limit < 2) // the smallest block size: no band could be narrower
+  {
+    return c;
+  }
+  const float* z = hf.heights();
+  const int nx = hf.nx, ny = hf.ny;
+  const auto fromWest = [&](int j, int k) { return z[hf.index(k, j)]; };
+  const auto fromEast = [&](int j, int k) { return z[hf.index(nx - 1 - k, j)]; };
+  const auto fromSouth = [&](int i, int k) { return z[hf.index(i, k)]; };
+  const auto fromNorth = [&](int i, int k) { return z[hf.index(i, ny - 1 - k)]; };
+  // A corner belongs to two collars: a wedge along the west also starts the first columns
+  // with nodata seen from the north. So the columns are counted between the west and east
+  // collars, then the rows again between the south and north ones.
+  c.west = collarWidth(0, ny - 1, nx, limit, fromWest);
+  c.east = collarWidth(0, ny - 1, nx, limit, fromEast);
+  c.south = collarWidth(c.west, nx - 1 - c.east, ny, limit, fromSouth);
+  c.north = collarWidth(c.west, nx - 1 - c.east, ny, limit, fromNorth);
+  c.west = collarWidth(c.south, ny - 1 - c.north, nx, limit, fromWest);
+  c.east = collarWidth(c.south, ny - 1 - c.north, nx, limit, fromEast);
+  return c;
 }
 
 namespace
@@ -174,8 +239,9 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
 {
   Quadtree qt;
   maxBlockQuads = std::max(kMinBlockQuads, maxBlockQuads);
-  qt.colStart = splitBands(hf.nx - 1, maxBlockQuads);
-  qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads);
+  const NodataCollar collar = nodataCollar(hf, maxBlockQuads);
+  qt.colStart = splitBands(hf.nx - 1, maxBlockQuads, collar.west, collar.east);
+  qt.rowStart = splitBands(hf.ny - 1, maxBlockQuads, collar.south, collar.north);
   qt.blockCols = static_cast<int>(qt.colStart.size()) - 1;
   qt.blockRows = static_cast<int>(qt.rowStart.size()) - 1;
   qt.colUpperHalf = upperHalfBands(qt.blockCols);

@@ -95,8 +95,31 @@ constexpr int kDefaultBlockQuads = 32;
 std::string validateBlockSize(int maxBlockQuads);
 
 // Splits [0, quads] into bands of at most maxQuads quads by recursive halving (rounding
-// down). Returns band start positions plus the end (so size = bands + 1).
-std::vector<int> splitBands(int quads, int maxQuads);
+// down). Returns band start positions plus the end (so size = bands + 1). Non-zero collars
+// (nodataCollar) first take a band of that many quads at the low and the high end, and
+// the quads between are halved as above; a collar that would leave fewer than
+// kMinBlockQuads quads between is dropped.
+std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0);
+
+// Nodata collars: the width, in quads, of the nodata that lines each border of the DEM.
+// A raster reprojected onto the engine's grid has wedges of nodata along its borders (the
+// reader's lon/lat tiles: up to 11 samples on the east and west of an SRTM3 tile at 47 N;
+// a UTM quad such as St Helens' USGS DEM), and a block holding nodata stays at level 0,
+// so every border block used to be drawn at full resolution. A band as wide as the collar
+// keeps the wedge in thin blocks and leaves the blocks inside it free to coarsen.
+// Per side, each line across it (rows for West and East, columns for South and North)
+// counts its nodata samples from the border up to the first valid one. The collar is one
+// more than the longest count below maxBlockQuads - kMinBlockQuads, so that the band's
+// inner column (row) and the one before it are valid on every such line: the collar
+// blocks' strips towards the blocks inside then touch no nodata, and those blocks may
+// take any level. A longer run is a void or an empty line, which no thin band isolates.
+// 0 where no line starts with nodata. Lines within another side's collar are not counted
+// (a wedge along the west also starts the first columns with nodata seen from the north).
+struct NodataCollar
+{
+  int west = 0, east = 0, south = 0, north = 0;
+};
+NodataCollar nodataCollar(const Heightfield& hf, int maxBlockQuads);
 
 // Where buildQuadtree splits a node's range [begin, end) of block columns (or rows): the
 // first band of its upper half (end when the range is one band, which is not split).
@@ -121,7 +144,8 @@ inline bool oneQuadAntiDiagonal(const Quadtree& qt, int block)
   return qt.colUpperHalf[block % qt.blockCols] != qt.rowUpperHalf[block / qt.blockCols];
 }
 
-// Builds the quadtree. The heightfield must be valid and maxBlockQuads pass
+// Builds the quadtree, with the heightfield's nodata collars as their own bands
+// (nodataCollar, splitBands). The heightfield must be valid and maxBlockQuads pass
 // validateBlockSize (a smaller value is raised to kMinBlockQuads, so no caller can build
 // an unstitchable tree). The blocks' boxes are scanned by up to `threads` threads (0 = the
 // hardware's).

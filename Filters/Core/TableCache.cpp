@@ -27,8 +27,10 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // (a version 2 file holds bounds there, which would make a small block size draw a finer
 // far field when its table comes from an old cache than when it is built); 4: one-quad
 // blocks split along oneQuadAntiDiagonal's diagonal and merged fans centred on
-// mergedCentre (Tessellate.h), which changes those errors.
-constexpr uint32_t kFormatVersion = 4;
+// mergedCentre (Tessellate.h), which changes those errors; 5: nodata collars have their
+// own bands (nodataCollar, Quadtree.h), which moves the blocks of a DEM with nodata along
+// a border.
+constexpr uint32_t kFormatVersion = 5;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

@@ -119,10 +119,18 @@ inline void refSplit(int start, int quads, int maxQuads, std::vector<int>& start
   refSplit(start, a, maxQuads, starts);
   refSplit(start + a, quads - a, maxQuads, starts);
 }
-inline std::vector<int> refSplitBands(int quads, int maxQuads)
+// With collars (Quadtree.h, splitBands): a band of each collar at the ends, the quads
+// between halved; both collars dropped when fewer than 4 quads would be left between.
+inline std::vector<int> refSplitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0)
 {
+  if (quads - lowCollar - highCollar < 4)
+    lowCollar = highCollar = 0;
   std::vector<int> s;
-  refSplit(0, quads, maxQuads, s);
+  if (lowCollar > 0)
+    s.push_back(0);
+  refSplit(lowCollar, quads - lowCollar - highCollar, maxQuads, s);
+  if (highCollar > 0)
+    s.push_back(quads - highCollar);
   s.push_back(quads);
   return s;
 }

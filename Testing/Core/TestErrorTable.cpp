@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace gmmtest;
 
 namespace
@@ -315,7 +317,17 @@ TEST(ErrorTable, MergedNodeErrorsEqualBruteForce)
       for (int r = node.rowBegin; r < node.rowEnd; ++r) ring.push_back({ i1, qt.rowStart[r] });
       for (int c = node.colEnd; c > node.colBegin; --c) ring.push_back({ qt.colStart[c], j1 });
       for (int r = node.rowEnd; r > node.rowBegin; --r) ring.push_back({ i0, qt.rowStart[r] });
-      const gmm::GridPoint centre{ (i0 + i1) / 2, (j0 + j1) / 2 };
+      // the apex: the corner the node's children share (their ranges meet there)
+      int cSplit = node.colEnd, rSplit = node.rowEnd;
+      for (int k = 0; k < node.childCount; ++k)
+      {
+        const gmm::QuadtreeNode& child = qt.nodes[node.firstChild + k];
+        if (child.colBegin > node.colBegin)
+          cSplit = std::min(cSplit, child.colBegin);
+        if (child.rowBegin > node.rowBegin)
+          rSplit = std::min(rSplit, child.rowBegin);
+      }
+      const gmm::GridPoint centre{ qt.colStart[cSplit], qt.rowStart[rSplit] };
       std::vector<gmm::GridTriangle> fan;
       for (std::size_t p = 0; p < ring.size(); ++p)
         fan.push_back({ { centre, ring[p], ring[(p + 1) % ring.size()] } });

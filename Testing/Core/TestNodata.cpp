@@ -179,3 +179,71 @@ TEST(Nodata, AllNodataEmitsNothing)
     EXPECT_EQ(e.updateWithLevels(lv).triangles, 0u);
   }
 }
+
+TEST(Nodata, BorderWedgesStayInTheirCollars)
+{
+  // A reprojected raster's nodata wedges along its borders (Quadtree.h, nodataCollar). Row
+  // j starts with a run of nodata growing from 0 to tW along the west border and ends with
+  // one shrinking from tE to 0; columns start with up to tS nodata samples from the south.
+  // Every block outside the collar bands must then be free to coarsen: at an error of 1e9
+  // the frame draws at most 2 triangles per quad of the collar bands (they hold all the
+  // nodata) and a few per other block, where without the collars each border block would
+  // be drawn whole at full resolution (2 per quad of every border block).
+  Rng rng(5);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const int maxQ = 8 << randInt(rng, 0, 2);
+    const int nx = randInt(rng, 3 * maxQ, 8 * maxQ), ny = randInt(rng, 3 * maxQ, 8 * maxQ);
+    const int tW = randInt(rng, 1, maxQ - 5), tE = randInt(rng, 0, maxQ - 5);
+    const int tS = randInt(rng, 0, 3);
+    gmm::Heightfield hf = roughTerrain(nx, ny, rng);
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < tW * j / (ny - 1); ++i)
+        hf.z[hf.index(i, j)] = kNaN;
+      for (int i = 0; i < tE * (ny - 1 - j) / (ny - 1); ++i)
+        hf.z[hf.index(nx - 1 - i, j)] = kNaN;
+    }
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < tS * i / (nx - 1); ++j)
+        hf.z[hf.index(i, j)] = kNaN;
+    SCOPED_TRACE(std::to_string(nx) + "x" + std::to_string(ny) + " block " + std::to_string(maxQ) +
+      " wedges " + std::to_string(tW) + " " + std::to_string(tE) + " " + std::to_string(tS));
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, maxQ, 1), "");
+    const gmm::Quadtree& qt = e.quadtree();
+    for (double err : { 0.0, 5.0, 1e9 })
+    {
+      e.updateForError(err);
+      checkFrame(e, "updateForError " + std::to_string(err), true);
+    }
+    gmm::View v;
+    v.eye = { hf.worldX(nx / 2.0), hf.worldY(-5.0), 800.0 };
+    v.forward = { 0, hf.dy, -0.6 * std::fabs(hf.dy) };
+    v.fovYDegrees = 60;
+    e.update(v, 1.0);
+    checkFrame(e, "update", true);
+
+    // The bound, from the heights: quads of the blocks holding nodata (found here by
+    // scanning) at 2 triangles each, 8 for every other block (a one-quad block, or its
+    // share of a merged fan, with a strip fanned towards a finer neighbour).
+    std::size_t holedQuads = 0, otherBlocks = 0, borderQuads = 0;
+    for (int b = 0; b < qt.blockCount(); ++b)
+    {
+      const std::size_t quads = static_cast<std::size_t>(qt.blockWidth(b)) * qt.blockHeight(b);
+      if (blockFree(hf, qt, b))
+        ++otherBlocks;
+      else
+        holedQuads += quads;
+    }
+    for (int r = 0; r < qt.blockRows; ++r)
+      for (int c = 0; c < qt.blockCols; ++c)
+        if (r == 0 || c == 0 || c + 1 == qt.blockCols)
+          borderQuads += static_cast<std::size_t>(qt.blockWidth(qt.blockIndex(c, r))) *
+            qt.blockHeight(qt.blockIndex(c, r));
+    // the nodata lies in the collar bands: a fraction of the border blocks' quads
+    EXPECT_LE(holedQuads, static_cast<std::size_t>((tW + 1) * ny + (tE + 1) * ny + (tS + 1) * nx));
+    const std::size_t triangles = e.updateForError(1e9).triangles;
+    EXPECT_LE(triangles, 2 * holedQuads + 8 * otherBlocks) << "border blocks " << borderQuads;
+  }
+}

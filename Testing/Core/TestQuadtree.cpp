@@ -53,8 +53,11 @@ void checkTree(const gmm::Heightfield& hf, int maxQ)
   gmm::Quadtree qt = gmm::buildQuadtree(hf, maxQ);
   // Quadtree.h: a block size below 4 is raised to 4 (no 1-quad band inside a wider DEM)
   const int effMax = std::max(4, maxQ);
-  ASSERT_EQ(qt.colStart, refSplitBands(hf.nx - 1, effMax));
-  ASSERT_EQ(qt.rowStart, refSplitBands(hf.ny - 1, effMax));
+  // nodata along a border takes its own band (the collar rule is checked by hand in
+  // NodataCollarBandsByHand)
+  const gmm::NodataCollar c = gmm::nodataCollar(hf, effMax);
+  ASSERT_EQ(qt.colStart, refSplitBands(hf.nx - 1, effMax, c.west, c.east));
+  ASSERT_EQ(qt.rowStart, refSplitBands(hf.ny - 1, effMax, c.south, c.north));
   for (std::size_t k = 0; k + 1 < qt.colStart.size(); ++k)
     EXPECT_TRUE(qt.colStart[k + 1] - qt.colStart[k] >= 2 || hf.nx == 2) << "1-quad column band";
   for (std::size_t k = 0; k + 1 < qt.rowStart.size(); ++k)
@@ -213,4 +216,63 @@ TEST(Quadtree, UpperHalfBandsByHand)
   EXPECT_EQ(gmm::upperHalfBands(4), (std::vector<uint8_t>{ 0, 1, 0, 1 }));
   EXPECT_EQ(gmm::upperHalfBands(1), (std::vector<uint8_t>{ 0 }));
   EXPECT_TRUE(gmm::upperHalfBands(0).empty());
+}
+
+TEST(Quadtree, NodataCollarBandsByHand)
+{
+  // splitBands with collars: the collars first, the quads between halved as without them.
+  EXPECT_EQ(gmm::splitBands(100, 32, 12, 3), (std::vector<int>{ 0, 12, 33, 54, 75, 97, 100 }));
+  EXPECT_EQ(gmm::splitBands(100, 32, 0, 2), (std::vector<int>{ 0, 24, 49, 73, 98, 100 }));
+  EXPECT_EQ(gmm::splitBands(10, 32, 4, 4), (std::vector<int>{ 0, 10 })) << "under 4 quads left";
+
+  // A 101 x 81 plane with nodata wedges: row j starts with j % 12 nodata samples (widest
+  // 11) and ends with 1; column i starts with (i % 3) nodata samples from the south; the
+  // north has none (the west wedge's first columns, seen from the north, lie in the west
+  // collar and do not count). Row 40 is all nodata and column 50 holds a void of 30 samples from the
+  // north border: lines no thin band isolates, which the collars must ignore.
+  gmm::Heightfield hf;
+  hf.nx = 101;
+  hf.ny = 81;
+  hf.z.assign(static_cast<std::size_t>(hf.nx) * hf.ny, 5.0f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int j = 0; j < hf.ny; ++j)
+  {
+    for (int i = 0; i < j % 12; ++i)
+      hf.z[hf.index(i, j)] = nan;
+    hf.z[hf.index(hf.nx - 1, j)] = nan;
+  }
+  for (int i = 0; i < hf.nx; ++i)
+    for (int j = 0; j < i % 3; ++j)
+      hf.z[hf.index(i, j)] = nan;
+  for (int i = 0; i < hf.nx; ++i)
+    hf.z[hf.index(i, 40)] = nan;
+  for (int j = hf.ny - 30; j < hf.ny; ++j)
+    hf.z[hf.index(50, j)] = nan;
+
+  // A collar is one more than the longest run shorter than the block size less 4.
+  const gmm::NodataCollar c = gmm::nodataCollar(hf, 32);
+  EXPECT_EQ(c.west, 12);
+  EXPECT_EQ(c.east, 2);
+  EXPECT_EQ(c.south, 3);
+  EXPECT_EQ(c.north, 0);
+  EXPECT_EQ(gmm::nodataCollar(hf, 12).west, 8) << "at block 12 only runs up to 7 count";
+  EXPECT_EQ(gmm::nodataCollar(hf, 4).west, 0) << "the smallest block has no collars";
+
+  const gmm::Quadtree qt = gmm::buildQuadtree(hf, 32);
+  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 12, 33, 55, 76, 98, 100 }));
+  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 3, 22, 41, 60, 80 }));
+  // The wedges lie in the collar bands, with a valid line between them and the inner
+  // blocks: scanned here from the heights, the inner blocks' nodata, and that of the
+  // collar bands' last line but one, is row 40's and column 50's only.
+  for (int r = 1; r + 1 < qt.blockRows; ++r)
+    for (int cc = 1; cc + 1 < qt.blockCols; ++cc)
+    {
+      bool nodata = false;
+      const int r0 = qt.rowStart[r] - (r == 1), r1 = qt.rowStart[r + 1] + (r + 2 == qt.blockRows);
+      const int c0 = qt.colStart[cc] - (cc == 1), c1 = qt.colStart[cc + 1] + (cc + 2 == qt.blockCols);
+      for (int j = r0; j <= r1; ++j)
+        for (int i = c0; i <= c1; ++i)
+          nodata |= std::isnan(hf.height(i, j)) && j != 40 && i != 50;
+      EXPECT_FALSE(nodata) << "block column " << cc << " row " << r;
+    }
 }
