@@ -29,7 +29,7 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // blocks split along oneQuadAntiDiagonal's diagonal and merged fans centred on
 // mergedCentre (Tessellate.h), which changes those errors; 5: nodata collars have their
 // own bands (nodataCollar, Quadtree.h), which moves the blocks of a DEM with nodata along
-// a border.
+// a border, and the header holds a hash of the band starts (hashBands).
 constexpr uint32_t kFormatVersion = 5;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
@@ -85,7 +85,8 @@ struct FileHeader
   uint32_t byteOrder;
   uint64_t heightsHash;
   int32_t nx, ny, maxBlockQuads, levels, pairs, blocks;
-  uint32_t nodes; // quadtree nodes (mergedError entries)
+  uint32_t nodes;     // quadtree nodes (mergedError entries)
+  uint64_t bandsHash; // the quadtree's band starts (hashBands)
 };
 #pragma pack(pop)
 
@@ -98,6 +99,20 @@ uint64_t checksum(const FileHeader& h, const ErrorTable& t)
     sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
   }
   return sum;
+}
+
+// A hash of the quadtree's column and row band starts. The bands follow from the heights
+// and the block size by a rule (Quadtree.h), but a table is only valid for the very blocks
+// it was built over, so the file says which: a rule changed without a format change, or
+// two builds with different rules sharing a cache, then rebuild instead of trusting
+// errors of other blocks (the sizes alone can match: a collar one quad wider moves no count).
+uint64_t hashBands(const Quadtree& qt)
+{
+  const uint64_t cols = hashBytes(reinterpret_cast<const unsigned char*>(qt.colStart.data()),
+    qt.colStart.size() * sizeof(int), 3);
+  const uint64_t rows = hashBytes(reinterpret_cast<const unsigned char*>(qt.rowStart.data()),
+    qt.rowStart.size() * sizeof(int), 4);
+  return combine(cols, rows);
 }
 
 // The table's level count for a quadtree, as buildErrorTable derives it.
@@ -192,6 +207,10 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   {
     return path + ": sizes do not match the quadtree";
   }
+  if (h.bandsHash != hashBands(qt))
+  {
+    return path + ": made for other blocks (another band layout)";
+  }
   const std::size_t blocks = static_cast<std::size_t>(h.blocks);
   const std::size_t own = blocks * levels, strips = blocks * 4 * std::max(1, pairs);
   const std::size_t nodes = h.nodes;
@@ -234,7 +253,8 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   return std::string();
 }
 
-std::string writeTableCache(const std::string& path, const TableCacheKey& key, const ErrorTable& table)
+std::string writeTableCache(
+  const std::string& path, const TableCacheKey& key, const Quadtree& qt, const ErrorTable& table)
 {
   std::error_code ec;
   const fs::path target(path);
@@ -258,6 +278,7 @@ std::string writeTableCache(const std::string& path, const TableCacheKey& key, c
   h.pairs = table.pairs;
   h.blocks = table.levels > 0 ? static_cast<int32_t>(table.ownError.size() / table.levels) : 0;
   h.nodes = static_cast<uint32_t>(table.mergedError.size());
+  h.bandsHash = hashBands(qt);
   const uint64_t sum = checksum(h, table);
   // A private temporary name in the same directory, then an atomic rename.
   std::random_device rd;

@@ -5,19 +5,19 @@
 // A cache file is found by its key: a content hash of the heights (their bits, nodata
 // included, and the grid size) and the block size; its name is derived from the key, so a
 // changed DEM looks for another file. The file is trusted only after every check passes:
-// magic, format version, byte order, the full key stored inside, sizes that match the
-// quadtree the table is for, a checksum over header and data, and values that a table can
+// magic, format version, byte order, the full key stored inside, sizes and band layout
+// that match the quadtree the table is for, a checksum over header and data, and values that a table can
 // hold (>= 0 or +inf, never NaN). Anything else is reported and the caller rebuilds; a
 // rebuilt table replaces the file. Files are written to a temporary name and renamed, so
 // a reader never sees half a file, and concurrent writers of one key do no harm.
 //
 // Format (native byte order, checked): "GMMTABLE", u32 version, u32 byte-order mark,
-// u64 heights hash, i32 nx, ny, block size, levels, pairs, blocks, u32 nodes,
-// f32 ownError[blocks * levels], f32 ownErrorExact[...], f32 stripError[blocks * 4 * pairs],
+// u64 heights hash, i32 nx, ny, block size, levels, pairs, blocks, u32 nodes, u64 hash of
+// the band starts, f32 ownError[blocks * levels], f32 ownErrorExact[...], f32 stripError[blocks * 4 * pairs],
 // f32 mergedError[nodes], u64 checksum of everything before it. Version 2 added the
 // merged-node errors, version 3 made more of them exact (ErrorTable.h), version 4 follows
-// the one-quad diagonals and fan centres of Tessellate.h; an older file is reported as such
-// and rebuilt.
+// the one-quad diagonals and fan centres of Tessellate.h, version 5 the nodata collars'
+// bands (Quadtree.h) and the band hash; an older file is reported as such and rebuilt.
 #pragma once
 
 #include "ErrorTable.h"
@@ -74,9 +74,10 @@ std::string tableCachePath(const std::string& directory, const TableCacheKey& ke
 std::string readTableCache(const std::string& path, const TableCacheKey& key, const Quadtree& qt,
   ErrorTable& out);
 
-// Writes `table` for `key` to `path` (creating the directory when needed). Returns "" or
-// why it could not (e.g. a read-only location).
-std::string writeTableCache(const std::string& path, const TableCacheKey& key, const ErrorTable& table);
+// Writes `table`, built over `qt`, for `key` to `path` (creating the directory when
+// needed). Returns "" or why it could not (e.g. a read-only location).
+std::string writeTableCache(
+  const std::string& path, const TableCacheKey& key, const Quadtree& qt, const ErrorTable& table);
 
 // Removes the least recently written table files of `directory` until the rest take at
 // most `maxBytes`; other files are never touched.

@@ -61,7 +61,7 @@ std::string buildTerrain(Heightfield hf, int maxBlockQuads, int threads,
     t->table = buildErrorTable(t->hf, t->qt, threads, progress);
     if (r.used)
     {
-      const std::string why = writeTableCache(r.path, key, t->table);
+      const std::string why = writeTableCache(r.path, key, t->qt, t->table);
       r.written = why.empty();
       if (!why.empty())
       {

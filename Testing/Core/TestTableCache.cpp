@@ -193,10 +193,30 @@ TEST(TableCache, ForgedValuesWithAValidChecksumAreRefused)
   gmm::ErrorTable bad = built->table;
   bad.ownError[3] = std::numeric_limits<float>::quiet_NaN();
   const gmm::TableCacheKey key{ gmm::hashHeights(hf, 1), hf.nx, hf.ny, 16 };
-  ASSERT_EQ(gmm::writeTableCache(r0.path, key, bad), "");
+  ASSERT_EQ(gmm::writeTableCache(r0.path, key, built->qt, bad), "");
   gmm::ErrorTable out;
   EXPECT_NE(gmm::readTableCache(r0.path, key, built->qt, out).find("values"), std::string::npos);
   EXPECT_TRUE(out.ownError.empty());
+}
+
+TEST(TableCache, ATableForOtherBandsIsRefused)
+{
+  // Same heights, block size and sizes, but one band boundary moved by a quad (as a
+  // nodata collar one quad wider would): the errors are those of other blocks.
+  TempDir dir("bands");
+  const gmm::Heightfield hf = terrain(90, 90, 8);
+  gmm::TableCacheReport r0;
+  auto built = build(hf, 16, cacheIn(dir.path), r0);
+  gmm::Quadtree moved = built->qt;
+  ASSERT_GE(moved.colStart.size(), 3u);
+  moved.colStart[1] += 1;
+  const gmm::TableCacheKey key{ gmm::hashHeights(hf, 1), hf.nx, hf.ny, 16 };
+  ASSERT_EQ(gmm::writeTableCache(r0.path, key, moved, built->table), "");
+  gmm::ErrorTable out;
+  EXPECT_NE(gmm::readTableCache(r0.path, key, built->qt, out).find("band layout"), std::string::npos);
+  EXPECT_TRUE(out.ownError.empty());
+  ASSERT_EQ(gmm::writeTableCache(r0.path, key, built->qt, built->table), "");
+  EXPECT_EQ(gmm::readTableCache(r0.path, key, built->qt, out), "");
 }
 
 TEST(TableCache, UnwritableLocationStillBuilds)
