@@ -169,7 +169,8 @@ size_t vtkGeoMipMapTerrain::GetMemoryBytes() const
   const gmm::Terrain& t = *this->Terrain;
   size_t bytes = t.hf.z.capacity() * sizeof(float);
   bytes += t.qt.nodes.capacity() * sizeof(gmm::QuadtreeNode) +
-    t.qt.blockBox.capacity() * sizeof(gmm::Box) + t.qt.blockHasNodata.capacity();
+    t.qt.blockBox.capacity() * sizeof(gmm::Box) + t.qt.blockHasNodata.capacity() +
+    (t.qt.nodataBits.capacity() + t.qt.nodataBitsAt.capacity()) * sizeof(uint64_t);
   bytes += (t.table.ownError.capacity() + t.table.ownErrorExact.capacity() +
              t.table.stripError.capacity()) * sizeof(float);
   return bytes;

@@ -84,7 +84,7 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
   float* own = &t.ownError[static_cast<std::size_t>(block) * t.levels];
   float* exact = &t.ownErrorExact[static_cast<std::size_t>(block) * t.levels];
   float* strips = &t.stripError[static_cast<std::size_t>(block) * 4 * t.pairs];
-  const bool lockFullRes = qt.blockHasNodata[block] != 0;
+  const bool nodata = qt.blockHasNodata[block] != 0;
   scratch.edgeLine.assign(4 * static_cast<std::size_t>(t.levels), std::numeric_limits<float>::quiet_NaN());
   scratch.ringLine.assign(4 * static_cast<std::size_t>(t.levels), std::numeric_limits<float>::quiet_NaN());
   float running = 0.0f;
@@ -92,9 +92,11 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
   {
     const BlockShape shape = blockShape(width, height, m);
     own[m] = exact[m] = kInf;
-    if (m > top || shape == BlockShape::Invalid || (lockFullRes && m > 0))
+    if (m > top || shape == BlockShape::Invalid || running == kInf)
     {
-      continue; // never selected
+      // Never selected: an invalid shape, or a finer level already met nodata (+inf),
+      // which every coarser level then does too (own errors are monotone).
+      continue;
     }
     // Full resolution with its own edges draws every sample: holes there are the data's.
     const bool strict = m > 0;
@@ -111,12 +113,6 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     }
     else
     {
-      if (m > 0)
-      {
-        edgeSamples(qt.colStart[block % qt.blockCols], qt.colStart[block % qt.blockCols + 1], m, scratch.emit.cols);
-        edgeSamples(qt.rowStart[block / qt.blockCols], qt.rowStart[block / qt.blockCols + 1], m, scratch.emit.rows);
-        e = innerAreaError(hf, scratch.emit.cols, scratch.emit.rows);
-      }
       for (int side = 0; side < 4; ++side)
       {
         float previous = m == 0 ? 0.0f : sideStripError(hf, qt, block, cfg, side, scratch);
@@ -136,6 +132,22 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
           }
           strips[side * t.pairs + ErrorTable::pairIndex(m, n)] = s;
           previous = s;
+        }
+      }
+      // The inner grid after the strips: a strip over nodata (+inf) makes it moot.
+      if (m > 0 && e != kInf)
+      {
+        edgeSamples(qt.colStart[block % qt.blockCols], qt.colStart[block % qt.blockCols + 1], m, scratch.emit.cols);
+        edgeSamples(qt.rowStart[block / qt.blockCols], qt.rowStart[block / qt.blockCols + 1], m, scratch.emit.rows);
+        if (!nodata)
+        {
+          e = std::max(e, innerAreaError(hf, scratch.emit.cols, scratch.emit.rows));
+        }
+        else
+        {
+          // Its cells around the nodata (HoleCells.h): only full-resolution triangles
+          // touch nodata, and they are the data's own holes (not strict).
+          e = std::max(e, partError(hf, qt, block, cfg, BlockPart::Inner, false, scratch));
         }
       }
     }

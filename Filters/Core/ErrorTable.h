@@ -4,7 +4,8 @@
 // to the drawn triangle above/below it, and a table entry is the maximum over the samples
 // it covers.
 // A triangle that would cover or touch nodata at anything but full resolution has infinite
-// error, so blocks with holes stay at level 0 around them. Errors are computed in double
+// error; a block with nodata takes a coarser level only where its inner grid can keep the
+// nodata's cells at full resolution (HoleCells.h) and its strips hold none. Errors are computed in double
 // from height differences (a constant height offset, e.g. ECEF-like 6.4e6 m, gives the very
 // same table; a plane gives exactly 0) and rounded up to float, never below the exact value.
 // +inf means only "level not allowed": heights are bounded (kMaxHeight), so no real error

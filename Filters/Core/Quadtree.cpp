@@ -235,6 +235,63 @@ std::vector<uint8_t> upperHalfBands(int bands)
   return upper;
 }
 
+namespace
+{
+// Quadtree::nodataBits for every block with nodata (blockHasNodata set).
+void recordNodataBits(const Heightfield& hf, Quadtree& qt, int threads)
+{
+  const int blocks = qt.blockCount();
+  uint64_t words = 0;
+  std::vector<uint64_t> at;
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (qt.blockHasNodata[b])
+    {
+      if (at.empty())
+      {
+        at.assign(static_cast<std::size_t>(blocks), 0);
+      }
+      at[b] = words;
+      const uint64_t bits = static_cast<uint64_t>(qt.blockWidth(b) + 1) * (qt.blockHeight(b) + 1);
+      words += (bits + 63) / 64;
+    }
+  }
+  if (at.empty())
+  {
+    return;
+  }
+  qt.nodataBitsAt = std::move(at);
+  qt.nodataBits.assign(words, 0);
+  // Rows of blocks in parallel: each block writes its own words.
+  parallelChunks(static_cast<std::size_t>(qt.blockRows), 1, threads, [&](std::size_t first, std::size_t last) {
+    for (int r = static_cast<int>(first); r < static_cast<int>(last); ++r)
+    {
+      for (int c = 0; c < qt.blockCols; ++c)
+      {
+        const int b = qt.blockIndex(c, r);
+        if (!qt.blockHasNodata[b])
+        {
+          continue;
+        }
+        uint64_t* w = qt.nodataBits.data() + qt.nodataBitsAt[b];
+        uint64_t bit = 0;
+        for (int j = qt.rowStart[r]; j <= qt.rowStart[r + 1]; ++j)
+        {
+          const float* row = hf.heights() + hf.index(0, j);
+          for (int i = qt.colStart[c]; i <= qt.colStart[c + 1]; ++i, ++bit)
+          {
+            if (std::isnan(row[i]))
+            {
+              w[bit / 64] |= uint64_t(1) << (bit % 64);
+            }
+          }
+        }
+      }
+    }
+  });
+}
+} // namespace
+
 Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
 {
   Quadtree qt;
@@ -262,6 +319,7 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
       }
     }
   });
+  recordNodataBits(hf, qt, threads);
   qt.nodes.reserve(2 * static_cast<std::size_t>(qt.blockCount()));
   qt.nodes.resize(1);
   buildNode(qt, 0, 0, qt.blockCols, 0, qt.blockRows);

@@ -47,6 +47,12 @@ struct Quadtree
   std::vector<QuadtreeNode> nodes; // nodes[0] is the root
   std::vector<Box> blockBox;       // per block, world bounds (z over valid samples)
   std::vector<uint8_t> blockHasNodata; // per block: any NaN sample inside (borders included)
+  // Which samples of each block with nodata are nodata (borders included), one bit each,
+  // row by row from the block's first row and column, from bit 0 of word
+  // nodataBitsAt[block]. Both empty when the DEM has none. What draws such a block at a
+  // coarse level (HoleCells.h) reads them instead of the heights.
+  std::vector<uint64_t> nodataBits;
+  std::vector<uint64_t> nodataBitsAt;
   // Per block column and per block row: 1 when the band is the upper half of the last split
   // that separated it from its sibling (upperHalfBands), which gives every one-quad block
   // its diagonal (oneQuadAntiDiagonal).
@@ -63,6 +69,18 @@ struct Quadtree
   {
     const int r = block / blockCols;
     return rowStart[r + 1] - rowStart[r];
+  }
+  // Whether sample (i, j) of `block` (within its rectangle, borders included) is nodata.
+  bool sampleIsNodata(int block, int i, int j) const
+  {
+    if (!blockHasNodata[block])
+    {
+      return false;
+    }
+    const int c = block % blockCols, r = block / blockCols;
+    const uint64_t bit = static_cast<uint64_t>(j - rowStart[r]) * (colStart[c + 1] - colStart[c] + 1) +
+      static_cast<uint64_t>(i - colStart[c]);
+    return (nodataBits[nodataBitsAt[block] + bit / 64] >> (bit % 64)) & 1u;
   }
   // The blocks across the South, East, North and West sides of `block` (Tessellate.h's Side
   // order: low row, high column, high row, low column), -1 where the DEM ends.

@@ -29,8 +29,9 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // blocks split along oneQuadAntiDiagonal's diagonal and merged fans centred on
 // mergedCentre (Tessellate.h), which changes those errors; 5: nodata collars have their
 // own bands (nodataCollar, Quadtree.h), which moves the blocks of a DEM with nodata along
-// a border, and the header holds a hash of the band starts (hashBands).
-constexpr uint32_t kFormatVersion = 5;
+// a border, and the header holds a hash of the band starts (hashBands); 6: blocks with
+// nodata have finite errors at coarse levels (HoleCells.h).
+constexpr uint32_t kFormatVersion = 6;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

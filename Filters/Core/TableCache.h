@@ -17,7 +17,8 @@
 // f32 mergedError[nodes], u64 checksum of everything before it. Version 2 added the
 // merged-node errors, version 3 made more of them exact (ErrorTable.h), version 4 follows
 // the one-quad diagonals and fan centres of Tessellate.h, version 5 the nodata collars'
-// bands (Quadtree.h) and the band hash; an older file is reported as such and rebuilt.
+// bands (Quadtree.h) and the band hash, version 6 the coarse levels of blocks with nodata
+// (HoleCells.h); an older file is reported as such and rebuilt.
 #pragma once
 
 #include "ErrorTable.h"

@@ -8,9 +8,11 @@
 // (drawFan, any level to any other, difference > 1 included). Both blocks of a shared edge
 // derive its samples from the edge level alone, so they agree and no crack or T-junction
 // can appear. Triangles are counter-clockwise seen from +z in world coordinates.
-// Triangles touching a nodata (NaN) sample are not emitted.
+// Triangles touching a nodata (NaN) sample are not emitted. A block with nodata at a level
+// above 0 draws its inner grid cell by cell around the nodata (HoleCells.h).
 #pragma once
 
+#include "HoleCells.h"
 #include "Heightfield.h"
 #include "Quadtree.h"
 
@@ -64,6 +66,7 @@ struct EmitScratch
 {
   std::vector<int> cols, rows, edge;
   std::vector<GridPoint> outer, inner;
+  std::vector<CellKind> cells;
 };
 
 // Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a

@@ -1,6 +1,10 @@
 #include "TriangleCount.h"
 
+#include "HoleCells.h"
 #include "Levels.h"
+
+#include <array>
+#include <vector>
 
 namespace gmm
 {
@@ -28,13 +32,40 @@ std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig&
   const std::size_t nc = static_cast<std::size_t>(edgeSampleCount(i0, i1, config.level));
   const std::size_t nr = static_cast<std::size_t>(edgeSampleCount(j0, j1, config.level));
   std::size_t n = 2 * (nc - 3) * (nr - 3);
+  // Cells around nodata may be drawn at full resolution (HoleCells.h), and the inner ring
+  // then has every sample along those beside it.
+  std::array<std::size_t, 4> innerExtra{ 0, 0, 0, 0 };
+  if (config.level > 0 && qt.blockHasNodata[block])
+  {
+    std::vector<int> C, R;
+    std::vector<CellKind> kind;
+    edgeSamples(i0, i1, config.level, C);
+    edgeSamples(j0, j1, config.level, R);
+    classifyHoleCells(qt, block, C, R, kind);
+    if (!kind.empty())
+    {
+      n = holeCellsTriangleCount(C, R, kind);
+      const int cols = static_cast<int>(nc) - 3, rows = static_cast<int>(nr) - 3;
+      const auto fine = [&](int a, int b) { return kind[(b - 1) * cols + (a - 1)] == CellKind::FullResolution; };
+      for (int a = 1; a <= cols; ++a)
+      {
+        innerExtra[South] += fine(a, 1) ? C[a + 1] - C[a] - 1 : 0;
+        innerExtra[North] += fine(a, rows) ? C[a + 1] - C[a] - 1 : 0;
+      }
+      for (int b = 1; b <= rows; ++b)
+      {
+        innerExtra[West] += fine(1, b) ? R[b + 1] - R[b] - 1 : 0;
+        innerExtra[East] += fine(cols, b) ? R[b + 1] - R[b] - 1 : 0;
+      }
+    }
+  }
   for (int side = South; side <= West; ++side)
   {
     const bool horizontal = side == South || side == North;
     const std::size_t edge = static_cast<std::size_t>(horizontal
         ? edgeSampleCount(i0, i1, config.edgeLevel[side])
         : edgeSampleCount(j0, j1, config.edgeLevel[side]));
-    const std::size_t inner = (horizontal ? nc : nr) - 2;
+    const std::size_t inner = (horizontal ? nc : nr) - 2 + innerExtra[side];
     n += (edge - 1) + (inner - 1);
   }
   return n;

@@ -1,8 +1,9 @@
 // How many triangles emitBlock (Tessellate.h) draws for a block configuration, without
 // drawing them: what a triangle budget is spent on.
 //
-// The count is that of a block without nodata; a block with NaN samples draws fewer
-// (emitBlock drops triangles touching them), so for a budget the count is an upper bound.
+// The count is that of the block drawn over every sample; a block with NaN samples draws
+// fewer (emitBlock drops triangles touching them), so for a budget the count is an upper
+// bound. A block with nodata at a level above 0 counts its cells (HoleCells.h).
 #pragma once
 
 #include "Quadtree.h"

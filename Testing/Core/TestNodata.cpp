@@ -5,6 +5,7 @@
 #include "CoreTestUtil.h"
 #include "Engine.h"
 #include "Levels.h"
+#include "RasterError.h"
 #include "Tessellate.h"
 
 #include <gtest/gtest.h>
@@ -246,4 +247,45 @@ TEST(Nodata, BorderWedgesStayInTheirCollars)
     const std::size_t triangles = e.updateForError(1e9).triangles;
     EXPECT_LE(triangles, 2 * holedQuads + 8 * otherBlocks) << "border blocks " << borderQuads;
   }
+}
+
+TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
+{
+  // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
+  // block 0. By hand (HoleCells.h): at level 4 the inner ring is that very sample and at
+  // 5 the one quad covers it, so at any error block 0's coarsest level is 3 (cells of 8
+  // quads; the four around (16, 16) at full resolution: 4 x 128 triangles less the 6 that
+  // touch it), the other blocks one quad each (the root cannot merge over nodata). Block
+  // 0's strips: the inner ring along its south and west has all 17 samples of the
+  // full-resolution cells' sides, joined to a border at level 3 (5 samples): 4 + 16
+  // triangles each; east and north join the same ring to the neighbours' corners: 1 + 16.
+  // Without the cells the block would draw its 2 048 full-resolution triangles less 6.
+  gmm::Heightfield hf;
+  hf.nx = hf.ny = 65;
+  hf.z.resize(65 * 65);
+  for (int j = 0; j < 65; ++j)
+    for (int i = 0; i < 65; ++i)
+      hf.z[hf.index(i, j)] = static_cast<float>(3 * i + 2 * j);
+  hf.z[hf.index(16, 16)] = kNaN;
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
+  const gmm::FrameStats& s = e.updateForError(1e9);
+  EXPECT_EQ(e.levels()[0], 3);
+  EXPECT_EQ(e.levels()[1], 5);
+  EXPECT_EQ(e.levels()[2], 5);
+  EXPECT_EQ(e.levels()[3], 5);
+  EXPECT_EQ(s.triangles, (4u * 128 - 6) + 2 * (4 + 16) + 2 * (1 + 16) + 3 * 2);
+  EXPECT_EQ(e.indices().size(), 3 * s.triangles);
+  expectNoNaNReferenced(hf, e.indices(), "interior void");
+  checkFrame(e, "interior void", true);
+  // The plane is drawn exactly wherever it is drawn: every drawn triangle's error is 0.
+  std::vector<gmm::GridTriangle> tris;
+  for (std::size_t t = 0; t < e.indices().size(); t += 3)
+  {
+    gmm::GridTriangle g;
+    for (int k = 0; k < 3; ++k)
+      g.v[k] = { static_cast<int>(e.indices()[t + k] % 65), static_cast<int>(e.indices()[t + k] / 65) };
+    tris.push_back(g);
+  }
+  EXPECT_EQ(gmm::trianglesError(hf, tris, true), 0.0f);
 }
