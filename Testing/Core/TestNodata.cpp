@@ -72,6 +72,24 @@ void checkFrame(const gmm::Engine& e, const std::string& what, bool selected)
   }
   EXPECT_EQ(checkCoverage(hf, qt.colStart, qt.rowStart, e.indices(), drawn, mustCover), "") << what;
 }
+// The engine's own frames at these view-independent errors, then from an oblique view
+// at tau 1, each checked by checkFrame.
+void checkSelectedFrames(gmm::Engine& e, std::initializer_list<double> errors)
+{
+  const gmm::Heightfield& hf = e.heightfield();
+  for (double err : errors)
+  {
+    e.updateForError(err);
+    checkFrame(e, "updateForError " + std::to_string(err), true);
+  }
+  gmm::View v;
+  v.eye = { hf.worldX(hf.nx / 2.0), hf.worldY(-5.0), 800.0 };
+  v.forward = { 0, hf.dy, -0.6 * std::fabs(hf.dy) };
+  v.fovYDegrees = 60;
+  e.update(v, 1.0);
+  ASSERT_EQ(e.lastError(), "");
+  checkFrame(e, "update", true);
+}
 } // namespace
 
 TEST(Nodata, SingleSampleHole)
@@ -85,18 +103,7 @@ TEST(Nodata, SingleSampleHole)
     hf.z[hf.index(hi, hj)] = kNaN;
     gmm::Engine e;
     ASSERT_EQ(e.setHeightfield(hf, randInt(rng, 4, 32), 1), "");
-    for (double err : { 0.0, 1.0, 50.0, 1e9 })
-    {
-      e.updateForError(err);
-      checkFrame(e, "updateForError " + std::to_string(err), true);
-    }
-    gmm::View v;
-    v.eye = { hf.worldX(nx / 2.0), hf.worldY(-5.0), 800.0 };
-    v.forward = { 0, hf.dy, -0.6 * std::fabs(hf.dy) };
-    v.fovYDegrees = 60;
-    e.update(v, 1.0);
-    ASSERT_EQ(e.lastError(), "");
-    checkFrame(e, "update", true);
+    checkSelectedFrames(e, { 0.0, 1.0, 50.0, 1e9 });
   }
 }
 
@@ -213,17 +220,7 @@ TEST(Nodata, BorderWedgesStayInTheirCollars)
     gmm::Engine e;
     ASSERT_EQ(e.setHeightfield(hf, maxQ, 1), "");
     const gmm::Quadtree& qt = e.quadtree();
-    for (double err : { 0.0, 5.0, 1e9 })
-    {
-      e.updateForError(err);
-      checkFrame(e, "updateForError " + std::to_string(err), true);
-    }
-    gmm::View v;
-    v.eye = { hf.worldX(nx / 2.0), hf.worldY(-5.0), 800.0 };
-    v.forward = { 0, hf.dy, -0.6 * std::fabs(hf.dy) };
-    v.fovYDegrees = 60;
-    e.update(v, 1.0);
-    checkFrame(e, "update", true);
+    checkSelectedFrames(e, { 0.0, 5.0, 1e9 });
 
     // The bound, from the heights: quads of the blocks holding nodata (found here by
     // scanning) at 2 triangles each, 8 for every other block (a one-quad block, or its
