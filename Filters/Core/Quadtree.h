@@ -122,8 +122,8 @@ std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int high
 // Nodata collars: the width, in quads, of the nodata that lines each border of the DEM.
 // A raster reprojected onto the engine's grid has wedges of nodata along its borders (the
 // reader's lon/lat tiles: up to 11 samples on the east and west of an SRTM3 tile at 47 N;
-// a UTM quad such as St Helens' USGS DEM), and a block holding nodata stays at level 0,
-// so every border block used to be drawn at full resolution. A band as wide as the collar
+// a UTM quad such as St Helens' USGS DEM), and a block with nodata in its side strips
+// stays at level 0 (HoleCells.h), so every border block used to be drawn at full resolution. A band as wide as the collar
 // keeps the wedge in thin blocks and leaves the blocks inside it free to coarsen.
 // Per side, each line across it (rows for West and East, columns for South and North)
 // counts its nodata samples from the border up to the first valid one. The collar is one

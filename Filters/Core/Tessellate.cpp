@@ -1,78 +1,13 @@
 #include "Tessellate.h"
 
 #include "Levels.h"
-
-#include <cmath>
+#include "TriangleSinks.h"
 
 namespace gmm
 {
 
 namespace
 {
-
-// Collects triangles for one block: converts grid points to vertex indices, drops triangles
-// touching nodata unless asked to keep them, and keeps counter-clockwise world winding.
-class TriangleSink
-{
-public:
-  TriangleSink(const Heightfield& hf, std::vector<uint32_t>& out, bool keepNodata)
-    : hf_(hf)
-    , out_(out)
-    , keepNodata_(keepNodata)
-    , mirrored_(hf.mirrored())
-  {
-  }
-
-  // a, b, c are counter-clockwise in (i, j) grid space.
-  void triangle(GridPoint a, GridPoint b, GridPoint c)
-  {
-    const uint32_t ia = static_cast<uint32_t>(hf_.index(a.i, a.j));
-    const uint32_t ib = static_cast<uint32_t>(hf_.index(b.i, b.j));
-    const uint32_t ic = static_cast<uint32_t>(hf_.index(c.i, c.j));
-    const float* z = hf_.heights();
-    if (!keepNodata_ && (std::isnan(z[ia]) || std::isnan(z[ib]) || std::isnan(z[ic])))
-    {
-      return;
-    }
-    out_.push_back(ia);
-    // A mirrored grid -> world map reverses orientation: swap to stay CCW in world space.
-    out_.push_back(mirrored_ ? ic : ib);
-    out_.push_back(mirrored_ ? ib : ic);
-  }
-
-  // Quad with corners (i0, j0)-(i1, j1), split along its (i0, j0)-(i1, j1) diagonal.
-  void quad(int i0, int j0, int i1, int j1)
-  {
-    triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
-    triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
-  }
-
-private:
-  const Heightfield& hf_;
-  std::vector<uint32_t>& out_;
-  bool keepNodata_;
-  bool mirrored_;
-};
-
-// Collects triangles as grid points, counter-clockwise in (i, j), nodata or not: what the
-// error table rasterises (no vertex index to divide back into a grid position).
-class GridSink
-{
-public:
-  explicit GridSink(std::vector<GridTriangle>& out)
-    : out_(out)
-  {
-  }
-  void triangle(GridPoint a, GridPoint b, GridPoint c) { out_.push_back(GridTriangle{ { a, b, c } }); }
-  void quad(int i0, int j0, int i1, int j1)
-  {
-    triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
-    triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
-  }
-
-private:
-  std::vector<GridTriangle>& out_;
-};
 
 struct BlockRect
 {
@@ -156,8 +91,8 @@ void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vecto
   }
 }
 
-// The cells of a ring block at `level` over C x R (HoleCells.h), or none (empty) where
-// they are all plain: a block without nodata, level 0 (every cell is full resolution).
+// The cells of a ring block at `level` over C x R (HoleCells.h); none (empty) for a block
+// without nodata, and at level 0, where every cell is full resolution anyway.
 void holeCellsOf(const Quadtree& qt, int block, int level, const std::vector<int>& C,
   const std::vector<int>& R, std::vector<CellKind>& cells)
 {
@@ -459,76 +394,6 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
     cfg.edgeLevel[side] = nl > cfg.level ? nl : cfg.level;
   }
   return cfg;
-}
-
-bool mergeableNode(const Quadtree& qt, int node)
-{
-  // At least 2 x 2 blocks: the fan then has no more triangles than its blocks at their
-  // coarsest (2 (c + r) <= 2 c r), and its centre sample is strictly inside.
-  const QuadtreeNode& n = qt.nodes[node];
-  return n.colEnd - n.colBegin >= 2 && n.rowEnd - n.rowBegin >= 2;
-}
-
-GridPoint mergedCentre(const Quadtree& qt, int node)
-{
-  // Where the quadtree splits the node's block columns and rows: a block corner strictly
-  // inside a mergeable node.
-  const QuadtreeNode& n = qt.nodes[node];
-  return GridPoint{ qt.colStart[splitBand(n.colBegin, n.colEnd)], qt.rowStart[splitBand(n.rowBegin, n.rowEnd)] };
-}
-
-void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)
-{
-  out.clear();
-  const QuadtreeNode& n = qt.nodes[node];
-  const int i0 = qt.colStart[n.colBegin], i1 = qt.colStart[n.colEnd];
-  const int j0 = qt.rowStart[n.rowBegin], j1 = qt.rowStart[n.rowEnd];
-  for (int c = n.colBegin; c < n.colEnd; ++c)
-    out.push_back({ qt.colStart[c], j0 }); // south, west to east
-  for (int r = n.rowBegin; r < n.rowEnd; ++r)
-    out.push_back({ i1, qt.rowStart[r] }); // east, south to north
-  for (int c = n.colEnd; c > n.colBegin; --c)
-    out.push_back({ qt.colStart[c], j1 }); // north, east to west
-  for (int r = n.rowEnd; r > n.rowBegin; --r)
-    out.push_back({ i0, qt.rowStart[r] }); // west, north to south
-}
-
-namespace
-{
-template <typename Sink>
-void emitMergedTo(Sink& sink, const Quadtree& qt, int node, std::vector<GridPoint>& perimeter)
-{
-  if (!mergeableNode(qt, node))
-  {
-    return;
-  }
-  mergedPerimeter(qt, node, perimeter);
-  const GridPoint centre = mergedCentre(qt, node);
-  for (std::size_t k = 0; k < perimeter.size(); ++k)
-  {
-    sink.triangle(centre, perimeter[k], perimeter[(k + 1) % perimeter.size()]);
-  }
-}
-} // namespace
-
-void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out)
-{
-  EmitScratch scratch;
-  emitMergedNode(hf, qt, node, out, scratch);
-}
-
-void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out,
-  EmitScratch& scratch)
-{
-  TriangleSink sink(hf, out, false);
-  emitMergedTo(sink, qt, node, scratch.outer);
-}
-
-void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out)
-{
-  GridSink sink(out);
-  std::vector<GridPoint> perimeter;
-  emitMergedTo(sink, qt, node, perimeter);
 }
 
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+
 using namespace gmmtest;
 
 namespace
@@ -73,4 +76,51 @@ TEST(TriangleCount, BoundsBlocksWithNodata)
   gmm::emitBlock(hf, qt, 0, cfg, gmm::BlockPart::Whole, out);
   EXPECT_LT(out.size() / 3, gmm::blockTriangleCount(qt, 0, cfg));
   EXPECT_EQ(gmm::blockTriangleCount(qt, 0, cfg), 2u * 32 * 32);
+}
+
+// Blocks with voids at coarse levels draw cells around them at full resolution
+// (HoleCells.h): the count is still exactly what emitBlock emits with the triangles that
+// touch nodata kept, and an upper bound of what it draws.
+TEST(TriangleCount, MatchesEmitBlockAroundVoids)
+{
+  Rng rng(15);
+  int checked = 0;
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    const int maxQ = 16 << randInt(rng, 0, 1);
+    gmm::Heightfield hf = flatField(randInt(rng, 40, 120), randInt(rng, 40, 120));
+    for (int k = randInt(rng, 1, 12); k > 0; --k)
+    {
+      // a small void: a few samples around a random one
+      const int ci = randInt(rng, 0, hf.nx - 1), cj = randInt(rng, 0, hf.ny - 1);
+      for (int n = randInt(rng, 1, 6); n > 0; --n)
+        hf.z[hf.index(std::clamp(ci + randInt(rng, -2, 2), 0, hf.nx - 1),
+          std::clamp(cj + randInt(rng, -2, 2), 0, hf.ny - 1))] = std::numeric_limits<float>::quiet_NaN();
+    }
+    const gmm::Quadtree qt = gmm::buildQuadtree(hf, maxQ);
+    for (int b = 0; b < qt.blockCount(); ++b)
+    {
+      if (!qt.blockHasNodata[b])
+        continue;
+      const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+      const int top = refTopLevel(w, h);
+      for (int m = 1; m <= top; ++m)
+      {
+        if (!refLevelValid(w, h, m))
+          continue;
+        gmm::BlockConfig cfg;
+        cfg.level = m;
+        for (int s = 0; s < 4; ++s)
+          cfg.edgeLevel[s] = randInt(rng, m, top + 1);
+        std::vector<uint32_t> all, drawn;
+        gmm::emitBlock(hf, qt, b, cfg, gmm::BlockPart::Whole, all, true);
+        gmm::emitBlock(hf, qt, b, cfg, gmm::BlockPart::Whole, drawn);
+        const std::size_t count = gmm::blockTriangleCount(qt, b, cfg);
+        ASSERT_EQ(count, all.size() / 3) << "block " << b << " (" << w << "x" << h << ") level " << m;
+        EXPECT_LE(drawn.size() / 3, count);
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 100);
 }
