@@ -23,6 +23,20 @@ int neighbourCell(int nc, int nr, int a, int b, int side)
       return a > 1 ? (b - 1) * nc + (a - 2) : -1;
   }
 }
+
+// Whether any side of cell (a, b) is shared with a FullResolution cell.
+bool besideAnyFullResolution(const std::vector<int>& C, const std::vector<int>& R,
+  const std::vector<CellKind>& kind, int a, int b)
+{
+  for (int side = South; side <= West; ++side)
+  {
+    if (besideFullResolution(C, R, kind, a, b, side))
+    {
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
 void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
@@ -68,19 +82,11 @@ void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
       for (int a = 1; a <= nc; ++a)
       {
         CellKind& k = kind[(b - 1) * nc + (a - 1)];
-        if (k != CellKind::Plain || (C[a + 1] - C[a] >= 2 && R[b + 1] - R[b] >= 2))
+        if (k == CellKind::Plain && (C[a + 1] - C[a] < 2 || R[b + 1] - R[b] < 2) &&
+          besideAnyFullResolution(C, R, kind, a, b))
         {
-          continue;
-        }
-        for (int side = South; side <= West; ++side)
-        {
-          const int n = neighbourCell(nc, nr, a, b, side);
-          if (n >= 0 && kind[n] == CellKind::FullResolution)
-          {
-            k = CellKind::FullResolution;
-            grew = true;
-            break;
-          }
+          k = CellKind::FullResolution;
+          grew = true;
         }
       }
     }
@@ -90,17 +96,9 @@ void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
     for (int a = 1; a <= nc; ++a)
     {
       CellKind& k = kind[(b - 1) * nc + (a - 1)];
-      if (k == CellKind::Plain)
+      if (k == CellKind::Plain && besideAnyFullResolution(C, R, kind, a, b))
       {
-        for (int side = South; side <= West; ++side)
-        {
-          const int n = neighbourCell(nc, nr, a, b, side);
-          if (n >= 0 && kind[n] == CellKind::FullResolution)
-          {
-            k = CellKind::Fanned;
-            break;
-          }
-        }
+        k = CellKind::Fanned;
       }
     }
   }
@@ -111,6 +109,28 @@ bool besideFullResolution(const std::vector<int>& C, const std::vector<int>& R,
 {
   const int n = neighbourCell(static_cast<int>(C.size()) - 3, static_cast<int>(R.size()) - 3, a, b, side);
   return n >= 0 && kind[n] == CellKind::FullResolution;
+}
+
+std::size_t innerRingExtraSamples(
+  const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind, int side)
+{
+  if (kind.empty())
+  {
+    return 0;
+  }
+  const int nc = static_cast<int>(C.size()) - 3, nr = static_cast<int>(R.size()) - 3;
+  const bool horizontal = side == South || side == North;
+  std::size_t extra = 0;
+  for (int k = 1; k <= (horizontal ? nc : nr); ++k)
+  {
+    const int a = horizontal ? k : (side == West ? 1 : nc);
+    const int b = horizontal ? (side == South ? 1 : nr) : k;
+    if (cellAt(C, kind, a, b) == CellKind::FullResolution)
+    {
+      extra += static_cast<std::size_t>(horizontal ? C[a + 1] - C[a] : R[b + 1] - R[b]) - 1;
+    }
+  }
+  return extra;
 }
 
 std::size_t holeCellsTriangleCount(
@@ -124,7 +144,7 @@ std::size_t holeCellsTriangleCount(
     {
       const std::size_t w = static_cast<std::size_t>(C[a + 1] - C[a]);
       const std::size_t h = static_cast<std::size_t>(R[b + 1] - R[b]);
-      switch (kind[(b - 1) * nc + (a - 1)])
+      switch (cellAt(C, kind, a, b))
       {
         case CellKind::Plain:
           n += 2;

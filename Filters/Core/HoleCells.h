@@ -47,6 +47,20 @@ void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
 std::size_t holeCellsTriangleCount(
   const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind);
 
+// Cell (a, b) of classifyHoleCells' `kind` (the one place its layout is spelt out);
+// Plain when `kind` is empty (no cells, or a block without them).
+inline CellKind cellAt(const std::vector<int>& C, const std::vector<CellKind>& kind, int a, int b)
+{
+  return kind.empty() ? CellKind::Plain
+                      : kind[static_cast<std::size_t>(b - 1) * (C.size() - 3) + (a - 1)];
+}
+
+// Samples the side strip's inner ring along `side` (Tessellate.h's Side) has beyond the
+// level's own: every sample along each FullResolution cell on that side of the inner grid
+// (what Tessellate.cpp's sideLines adds, for the triangle count).
+std::size_t innerRingExtraSamples(
+  const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind, int side);
+
 // Whether the `side` (Tessellate.h's Side) of cell (a, b) is shared with a FullResolution
 // cell: such a side has every sample in the fan of a Fanned cell.
 bool besideFullResolution(const std::vector<int>& C, const std::vector<int>& R,

@@ -54,7 +54,7 @@ void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vecto
     for (int a = 1; a <= nc; ++a)
     {
       const int i0 = C[a], i1 = C[a + 1], j0 = R[b], j1 = R[b + 1];
-      switch (kind[(b - 1) * nc + (a - 1)])
+      switch (cellAt(C, kind, a, b))
       {
         case CellKind::Plain:
           sink.quad(i0, j0, i1, j1);
@@ -184,9 +184,8 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
   inner.clear();
   const std::size_t k = C.size() - 1, L = R.size() - 1;
   // Whether inner cell (a, b) (HoleCells.h's numbering) is drawn at full resolution.
-  const std::vector<CellKind>& cells = scratch.cells;
-  const auto fine = [&cells, k](std::size_t a, std::size_t b) {
-    return !cells.empty() && cells[(b - 1) * (k - 2) + (a - 1)] == CellKind::FullResolution;
+  const auto fine = [&](std::size_t a, std::size_t b) {
+    return cellAt(C, scratch.cells, static_cast<int>(a), static_cast<int>(b)) == CellKind::FullResolution;
   };
   switch (side)
   {

@@ -45,17 +45,9 @@ std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig&
     if (!kind.empty())
     {
       n = holeCellsTriangleCount(C, R, kind);
-      const int cols = static_cast<int>(nc) - 3, rows = static_cast<int>(nr) - 3;
-      const auto fine = [&](int a, int b) { return kind[(b - 1) * cols + (a - 1)] == CellKind::FullResolution; };
-      for (int a = 1; a <= cols; ++a)
+      for (int side = South; side <= West; ++side)
       {
-        innerExtra[South] += fine(a, 1) ? C[a + 1] - C[a] - 1 : 0;
-        innerExtra[North] += fine(a, rows) ? C[a + 1] - C[a] - 1 : 0;
-      }
-      for (int b = 1; b <= rows; ++b)
-      {
-        innerExtra[West] += fine(1, b) ? R[b + 1] - R[b] - 1 : 0;
-        innerExtra[East] += fine(cols, b) ? R[b + 1] - R[b] - 1 : 0;
+        innerExtra[side] = innerRingExtraSamples(C, R, kind, side);
       }
     }
   }

@@ -105,14 +105,19 @@ def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0
     return filt.GetOutput()
 
 
+def data_matrix(actor):
+    """The actor's data -> world matrix, or None when it is the identity."""
+    matrix = actor.GetMatrix()  # also brings GetIsIdentity up to date
+    return None if actor.GetIsIdentity() else matrix
+
+
 def measure_mesh(image, ren, actor, mesh):
     """vtkGeoMipMapScreenError of `mesh` (world coordinates of `actor`'s data) against the
     full-resolution `image`, with `ren`'s camera and size: a Measured."""
     import geomipmap
     from vtkmodules.vtkCommonMath import vtkMatrix4x4
 
-    matrix = actor.GetMatrix()  # also brings GetIsIdentity up to date
-    matrix = None if actor.GetIsIdentity() else matrix
+    matrix = data_matrix(actor)
     w, h = ren.GetSize()
     clip = vtkMatrix4x4()
     clip.DeepCopy(ren.GetActiveCamera().GetCompositeProjectionTransformMatrix(
@@ -135,10 +140,8 @@ def measure_mesh(image, ren, actor, mesh):
 def measure_drawn(image, ren, actor, tau, block_size):
     """Measures the last frame `ren` drew of `actor` (a vtkGeoMipMapMapper over `image` with
     this tau and block size): see the comment above. Call it right after the render."""
-    matrix = actor.GetMatrix()
-    matrix = None if actor.GetIsIdentity() else matrix
     mapper = actor.GetMapper()
-    mesh = lod_mesh(image, ren.GetActiveCamera(), ren.GetSize(), tau, block_size, matrix,
+    mesh = lod_mesh(image, ren.GetActiveCamera(), ren.GetSize(), tau, block_size, data_matrix(actor),
                     mapper.GetHeightScale(), mapper.GetGeomorphing(), mapper.GetGeomorphMerges())
     return measure_mesh(image, ren, actor, mesh)
 
