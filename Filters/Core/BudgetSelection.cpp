@@ -125,7 +125,7 @@ public:
 
   std::size_t count(int b) const
   {
-    return blockTriangleCount(qt_, b, blockConfigOf(qt_, levels_, b));
+    return blockTriangleCount(qt_, b, blockConfigOf(qt_, levels_, b), &t_);
   }
 
   void push(int b)
@@ -190,7 +190,7 @@ void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::ve
   std::vector<int8_t>& levels, BudgetScratch& s)
 {
   selectLevels(qt, table, visible, factor, lo, s.trial, s.select);
-  if (selectionTriangles(qt, visible, s.trial, nullptr) <= budget)
+  if (selectionTriangles(qt, table, visible, s.trial, nullptr) <= budget)
   {
     levels.swap(s.trial);
     return;
@@ -199,7 +199,7 @@ void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::ve
   {
     const double mid = std::sqrt(lo * hi);
     selectLevels(qt, table, visible, factor, mid, s.trial, s.select);
-    if (selectionTriangles(qt, visible, s.trial, nullptr) <= budget)
+    if (selectionTriangles(qt, table, visible, s.trial, nullptr) <= budget)
     {
       hi = mid;
       levels.swap(s.trial); // the finest fitting selection so far
@@ -213,15 +213,15 @@ void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::ve
 
 } // namespace
 
-std::size_t selectionTriangles(const Quadtree& qt, const std::vector<int>& visible,
-  const std::vector<int8_t>& levels, std::vector<std::size_t>* perBlock)
+std::size_t selectionTriangles(const Quadtree& qt, const ErrorTable& table,
+  const std::vector<int>& visible, const std::vector<int8_t>& levels, std::vector<std::size_t>* perBlock)
 {
   std::size_t total = 0;
   for (int b : visible)
   {
     if (levels[b] >= 0)
     {
-      const std::size_t n = blockTriangleCount(qt, b, blockConfigOf(qt, levels, b));
+      const std::size_t n = blockTriangleCount(qt, b, blockConfigOf(qt, levels, b), &table);
       total += n;
       if (perBlock)
       {
@@ -269,7 +269,7 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
       coarsestTau = std::max(coarsestTau, table.own(b, levels[b]) * factor[b]);
     }
   }
-  outcome.coarsestTriangles = selectionTriangles(qt, visible, levels, nullptr);
+  outcome.coarsestTriangles = selectionTriangles(qt, table, visible, levels, nullptr);
   if (outcome.coarsestTriangles > triangleBudget)
   {
     outcome.triangles = outcome.coarsestTriangles;
@@ -297,7 +297,7 @@ void refineWithinBudget(const Quadtree& qt, const ErrorTable& table, const std::
   }
   // Refine the largest projected error while the budget lasts.
   Refiner refiner(qt, table, factor, levels, scratch);
-  std::size_t total = fixedTriangles + selectionTriangles(qt, drawn, levels, &scratch.count);
+  std::size_t total = fixedTriangles + selectionTriangles(qt, table, drawn, levels, &scratch.count);
   scratch.heap.clear();
   for (int b : drawn)
   {

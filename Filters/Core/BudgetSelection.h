@@ -99,8 +99,9 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
 
 // Triangles of the listed blocks that have a level (blockTriangleCount), each also written
 // to perBlock[b] when given.
-std::size_t selectionTriangles(const Quadtree& qt, const std::vector<int>& drawn,
-  const std::vector<int8_t>& levels, std::vector<std::size_t>* perBlock = nullptr);
+std::size_t selectionTriangles(const Quadtree& qt, const ErrorTable& table,
+  const std::vector<int>& drawn, const std::vector<int8_t>& levels,
+  std::vector<std::size_t>* perBlock = nullptr);
 
 // The largest projected certified error (pixels) of the listed blocks that have a level.
 double selectionScreenError(const Quadtree& qt, const ErrorTable& table,

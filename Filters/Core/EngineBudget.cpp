@@ -80,7 +80,7 @@ double Engine::hierarchicalError() const
 std::size_t Engine::hierarchicalTriangles() const
 {
   const Terrain& t = *terrain_;
-  return selectionTriangles(t.qt, visibleList_, levels_) +
+  return selectionTriangles(t.qt, t.table, visibleList_, levels_) +
     mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor).triangles;
 }
 

@@ -5,8 +5,10 @@
 #include "Parallel.h"
 #include "RasterError.h"
 #include "Tessellate.h"
+#include "TriangleCount.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <atomic>
@@ -85,9 +87,16 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
   float* exact = &t.ownErrorExact[static_cast<std::size_t>(block) * t.levels];
   float* strips = &t.stripError[static_cast<std::size_t>(block) * 4 * t.pairs];
   const bool nodata = qt.blockHasNodata[block] != 0;
+  const bool empty = qt.everySampleNodata(block);
+  std::array<bool, 4> fine{};
+  for (int side = 0; side < 4; ++side)
+  {
+    fine[side] = qt.sideAtFullResolution(block, side);
+  }
   scratch.edgeLine.assign(4 * static_cast<std::size_t>(t.levels), std::numeric_limits<float>::quiet_NaN());
   scratch.ringLine.assign(4 * static_cast<std::size_t>(t.levels), std::numeric_limits<float>::quiet_NaN());
   float running = 0.0f;
+  std::size_t fewest = std::numeric_limits<std::size_t>::max(); // triangles, for nodata
   for (int m = 0; m < t.levels; ++m)
   {
     const BlockShape shape = blockShape(width, height, m);
@@ -100,9 +109,14 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     }
     // Full resolution with its own edges draws every sample: holes there are the data's.
     const bool strict = m > 0;
+    // Its own edges: the level, or every sample on a side at full resolution, which no
+    // neighbour changes (blockConfigOf).
     BlockConfig cfg;
     cfg.level = m;
-    cfg.edgeLevel = { m, m, m, m };
+    for (int side = 0; side < 4; ++side)
+    {
+      cfg.edgeLevel[side] = fine[side] ? 0 : m;
+    }
     // Level 0 with its own edges has every sample as a vertex: its error is exactly 0
     // (a vertex's residual is (zb - za) * A - A * (zb - za) = 0 in double), so only its
     // strips towards coarser edges are rasterised.
@@ -111,12 +125,23 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     {
       e = m == 0 ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Whole, strict, scratch);
     }
+    else if (nodata && m > 0)
+    {
+      // Its cells around the nodata, border included (HoleCells.h): only full-resolution
+      // triangles touch nodata, and they are the data's own holes (not strict). A block
+      // with no valid sample (the sea beside a coast) draws none: error 0, not rasterised.
+      e = empty ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Whole, false, scratch);
+    }
     else
     {
       for (int side = 0; side < 4; ++side)
       {
         float previous = m == 0 ? 0.0f : sideStripError(hf, qt, block, cfg, side, scratch);
         e = std::max(e, previous);
+        if (fine[side])
+        {
+          continue; // no coarser edge: strips[] for this side stay unused (0)
+        }
         // Coarser edges: from the first coarser level until the edge is just its corners;
         // beyond that the strip no longer changes.
         const int edgeLength = (side == South || side == North) ? width : height;
@@ -139,21 +164,29 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
       {
         edgeSamples(qt.colStart[block % qt.blockCols], qt.colStart[block % qt.blockCols + 1], m, scratch.emit.cols);
         edgeSamples(qt.rowStart[block / qt.blockCols], qt.rowStart[block / qt.blockCols + 1], m, scratch.emit.rows);
-        if (!nodata)
-        {
-          e = std::max(e, innerAreaError(hf, scratch.emit.cols, scratch.emit.rows));
-        }
-        else
-        {
-          // Its cells around the nodata (HoleCells.h): only full-resolution triangles
-          // touch nodata, and they are the data's own holes (not strict).
-          e = std::max(e, partError(hf, qt, block, cfg, BlockPart::Inner, false, scratch));
-        }
+        e = std::max(e, innerAreaError(hf, scratch.emit.cols, scratch.emit.rows));
       }
     }
     exact[m] = e;
     running = std::max(running, e);
     own[m] = running; // monotone over the valid levels
+    if (nodata && shape == BlockShape::Ring)
+    {
+      // A block with nodata draws no fewer triangles at every coarser level (its cells
+      // around a void can outnumber a finer level's: a void on a corner of 16-quad cells
+      // takes all four at full resolution). A level with no fewer triangles than a finer
+      // allowed one, whose error is no larger, is never worth drawing: not allowed.
+      const std::size_t count = blockTriangleCount(qt, block, cfg);
+      if (m > 0)
+      {
+        t.cellTriangles[static_cast<std::size_t>(block) * t.levels + m] = static_cast<uint32_t>(count);
+      }
+      if (count >= fewest)
+      {
+        own[m] = kInf;
+      }
+      fewest = std::min(fewest, count);
+    }
   }
 }
 
@@ -185,6 +218,30 @@ float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scrat
 
 } // namespace
 
+void fillCellTriangles(const Quadtree& qt, ErrorTable& table)
+{
+  table.cellTriangles.clear();
+  if (qt.nodataBits.empty())
+  {
+    return;
+  }
+  table.cellTriangles.assign(static_cast<std::size_t>(qt.blockCount()) * table.levels, 0);
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+    for (int m = 1; qt.blockHasNodata[b] && m < table.levels; ++m)
+    {
+      if (blockShape(w, h, m) == BlockShape::Ring)
+      {
+        BlockConfig cfg;
+        cfg.level = m;
+        table.cellTriangles[static_cast<std::size_t>(b) * table.levels + m] =
+          static_cast<uint32_t>(blockTriangleCount(qt, b, cfg));
+      }
+    }
+  }
+}
+
 bool mergedErrorIsExact(const Quadtree& qt, int node)
 {
   const QuadtreeNode& n = qt.nodes[node];
@@ -215,6 +272,10 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
 
   const std::size_t nodes = qt.nodes.size();
   resizeOnHugePages(t.mergedError, nodes, kInf);
+  if (!qt.nodataBits.empty())
+  {
+    t.cellTriangles.assign(blocks * t.levels, 0); // filled by fillBlock
+  }
   // Work items: every block, then every quadtree node (its merged fan).
   const std::size_t items = blocks + nodes;
 

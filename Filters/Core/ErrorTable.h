@@ -4,8 +4,8 @@
 // to the drawn triangle above/below it, and a table entry is the maximum over the samples
 // it covers.
 // A triangle that would cover or touch nodata at anything but full resolution has infinite
-// error; a block with nodata takes a coarser level only where its inner grid can keep the
-// nodata's cells at full resolution (HoleCells.h) and its strips hold none. Errors are computed in double
+// error; a block with nodata takes a coarser level drawn cell by cell (HoleCells.h), with
+// the nodata's cells at full resolution. Errors are computed in double
 // from height differences (a constant height offset, e.g. ECEF-like 6.4e6 m, gives the very
 // same table; a plane gives exactly 0) and rounded up to float, never below the exact value.
 // +inf means only "level not allowed": heights are bounded (kMaxHeight), so no real error
@@ -35,14 +35,18 @@ constexpr int kExactMergedQuads = 512;
 struct ErrorTable
 {
   int levels = 0; // entries per block (top level of the largest block + 1)
-  // ownError[b * levels + m]: error of block b at level m with its own edges; made monotone
-  // (non-decreasing) in m; +inf for levels that are invalid for the block.
+  // ownError[b * levels + m]: error of block b at level m with its own edges (the level, or
+  // every sample on a side at full resolution); made monotone
+  // (non-decreasing) in m; +inf for levels that are invalid for the block, and for the
+  // levels of a block with nodata that draw no fewer triangles than a finer allowed one
+  // (its cells may outnumber a finer level's, HoleCells.h).
   std::vector<float> ownError;
   // Exact (not monotone) error of the same configuration, for reporting certified bounds.
   std::vector<float> ownErrorExact;
   // stripError[((b * 4 + side) * pairs) + pairIndex(m, n)] for ring levels m < n: error of
   // the side strip of block b at level m when the edge is sampled at level n. Made monotone
-  // in n. Zero where unused.
+  // in n. Zero where unused: sides at full resolution (Quadtree::sideAtFullResolution) have
+  // no coarser edge, and their strip is part of ownError.
   std::vector<float> stripError;
   int pairs = 0; // levels * (levels - 1) / 2
   // mergedError[node]: error of quadtree node `node` drawn whole (Tessellate.h, merged
@@ -50,6 +54,12 @@ struct ErrorTable
   // range (a bound) elsewhere; +inf for leaves, nodes that are not mergeable and nodes
   // over nodata.
   std::vector<float> mergedError;
+  // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m > 0,
+  // drawn as cells with no strips (HoleCells.h), so a count of the level alone; 0 elsewhere.
+  // Triangle budgets ask for counts at every refinement step, and classifying the cells
+  // each time made a budgeted frame over Rainier 10x slower. Empty when the DEM has no
+  // nodata. Derived from the quadtree (fillCellTriangles), not stored in cache files.
+  std::vector<uint32_t> cellTriangles;
 
   static int pairIndex(int m, int n) { return n * (n - 1) / 2 + m; } // m < n
   float own(int block, int m) const { return ownError[static_cast<std::size_t>(block) * levels + m]; }
@@ -67,6 +77,10 @@ struct ErrorTable
 // Whether mergedError[node] is the exact error of the node's fan (kExactMergedHeight,
 // kExactMergedQuads) rather than a bound.
 bool mergedErrorIsExact(const Quadtree& qt, int node);
+
+// Fills table.cellTriangles for the quadtree's blocks with nodata (table.levels set);
+// buildErrorTable does it itself, a table read from a cache file needs it.
+void fillCellTriangles(const Quadtree& qt, ErrorTable& table);
 
 // Builds the table with up to `threads` worker threads (0 = hardware concurrency).
 // `progress`, when given, is called with the fraction of blocks done, from the calling

@@ -7,30 +7,29 @@ namespace gmm
 
 namespace
 {
-// The cell across `side` of cell (a, b), or -1 outside the inner grid (cells a in [1, nc],
-// b in [1, nr]).
+// The cell across `side` of cell (a, b) in a grid of nc x nr cells, or -1 across the
+// block's border.
 int neighbourCell(int nc, int nr, int a, int b, int side)
 {
   switch (side)
   {
     case South:
-      return b > 1 ? (b - 2) * nc + (a - 1) : -1;
+      return b > 0 ? (b - 1) * nc + a : -1;
     case East:
-      return a < nc ? (b - 1) * nc + a : -1;
+      return a + 1 < nc ? b * nc + a + 1 : -1;
     case North:
-      return b < nr ? b * nc + (a - 1) : -1;
+      return b + 1 < nr ? (b + 1) * nc + a : -1;
     default: // West
-      return a > 1 ? (b - 1) * nc + (a - 2) : -1;
+      return a > 0 ? b * nc + a - 1 : -1;
   }
 }
 
-// Whether any side of cell (a, b) is shared with a FullResolution cell.
-bool besideAnyFullResolution(const std::vector<int>& C, const std::vector<int>& R,
+bool anyFineSide(const std::vector<int>& C, const std::vector<int>& R,
   const std::vector<CellKind>& kind, int a, int b)
 {
   for (int side = South; side <= West; ++side)
   {
-    if (besideFullResolution(C, R, kind, a, b, side))
+    if (fineCellSide(C, R, kind, a, b, side))
     {
       return true;
     }
@@ -42,20 +41,11 @@ bool besideAnyFullResolution(const std::vector<int>& C, const std::vector<int>& 
 void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
   const std::vector<int>& R, std::vector<CellKind>& kind)
 {
-  kind.clear();
-  if (C.size() < 4 || R.size() < 4)
-  {
-    return; // no inner cells: any nodata lies in the strips
-  }
-  const int nc = static_cast<int>(C.size()) - 3, nr = static_cast<int>(R.size()) - 3;
+  const int nc = static_cast<int>(C.size()) - 1, nr = static_cast<int>(R.size()) - 1;
   kind.assign(static_cast<std::size_t>(nc) * nr, CellKind::Plain);
-  if (!qt.blockHasNodata[block])
+  for (int b = 0; b < nr; ++b)
   {
-    return;
-  }
-  for (int b = 1; b <= nr; ++b)
-  {
-    for (int a = 1; a <= nc; ++a)
+    for (int a = 0; a < nc; ++a)
     {
       bool nodata = false;
       for (int j = R[b]; j <= R[b + 1] && !nodata; ++j)
@@ -67,23 +57,23 @@ void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
       }
       if (nodata)
       {
-        kind[(b - 1) * nc + (a - 1)] = CellKind::FullResolution;
+        kind[static_cast<std::size_t>(b) * nc + a] = CellKind::FullResolution;
       }
     }
   }
-  // A cell beside a full-resolution one needs a sample inside for its fan; a cell under
-  // 2 quads wide or tall (a level's narrower last column or row) has none, so it is drawn
-  // at full resolution too, which may make its neighbours need fans in turn.
+  // A cell with a fine side needs a sample inside for its fan; a cell under 2 quads wide
+  // or tall (a level's narrower last column or row) has none, so it is drawn at full
+  // resolution too, which may give its neighbours fine sides in turn.
   for (bool grew = true; grew;)
   {
     grew = false;
-    for (int b = 1; b <= nr; ++b)
+    for (int b = 0; b < nr; ++b)
     {
-      for (int a = 1; a <= nc; ++a)
+      for (int a = 0; a < nc; ++a)
       {
-        CellKind& k = kind[(b - 1) * nc + (a - 1)];
+        CellKind& k = kind[static_cast<std::size_t>(b) * nc + a];
         if (k == CellKind::Plain && (C[a + 1] - C[a] < 2 || R[b + 1] - R[b] < 2) &&
-          besideAnyFullResolution(C, R, kind, a, b))
+          anyFineSide(C, R, kind, a, b))
         {
           k = CellKind::FullResolution;
           grew = true;
@@ -91,12 +81,12 @@ void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
       }
     }
   }
-  for (int b = 1; b <= nr; ++b)
+  for (int b = 0; b < nr; ++b)
   {
-    for (int a = 1; a <= nc; ++a)
+    for (int a = 0; a < nc; ++a)
     {
-      CellKind& k = kind[(b - 1) * nc + (a - 1)];
-      if (k == CellKind::Plain && besideAnyFullResolution(C, R, kind, a, b))
+      CellKind& k = kind[static_cast<std::size_t>(b) * nc + a];
+      if (k == CellKind::Plain && anyFineSide(C, R, kind, a, b))
       {
         k = CellKind::Fanned;
       }
@@ -104,43 +94,21 @@ void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
   }
 }
 
-bool besideFullResolution(const std::vector<int>& C, const std::vector<int>& R,
+bool fineCellSide(const std::vector<int>& C, const std::vector<int>& R,
   const std::vector<CellKind>& kind, int a, int b, int side)
 {
-  const int n = neighbourCell(static_cast<int>(C.size()) - 3, static_cast<int>(R.size()) - 3, a, b, side);
-  return n >= 0 && kind[n] == CellKind::FullResolution;
-}
-
-std::size_t innerRingExtraSamples(
-  const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind, int side)
-{
-  if (kind.empty())
-  {
-    return 0;
-  }
-  const int nc = static_cast<int>(C.size()) - 3, nr = static_cast<int>(R.size()) - 3;
-  const bool horizontal = side == South || side == North;
-  std::size_t extra = 0;
-  for (int k = 1; k <= (horizontal ? nc : nr); ++k)
-  {
-    const int a = horizontal ? k : (side == West ? 1 : nc);
-    const int b = horizontal ? (side == South ? 1 : nr) : k;
-    if (cellAt(C, kind, a, b) == CellKind::FullResolution)
-    {
-      extra += static_cast<std::size_t>(horizontal ? C[a + 1] - C[a] : R[b + 1] - R[b]) - 1;
-    }
-  }
-  return extra;
+  const int n = neighbourCell(static_cast<int>(C.size()) - 1, static_cast<int>(R.size()) - 1, a, b, side);
+  return n < 0 || kind[n] == CellKind::FullResolution;
 }
 
 std::size_t holeCellsTriangleCount(
   const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind)
 {
-  const int nc = static_cast<int>(C.size()) - 3, nr = static_cast<int>(R.size()) - 3;
+  const int nc = static_cast<int>(C.size()) - 1, nr = static_cast<int>(R.size()) - 1;
   std::size_t n = 0;
-  for (int b = 1; b <= nr; ++b)
+  for (int b = 0; b < nr; ++b)
   {
-    for (int a = 1; a <= nc; ++a)
+    for (int a = 0; a < nc; ++a)
     {
       const std::size_t w = static_cast<std::size_t>(C[a + 1] - C[a]);
       const std::size_t h = static_cast<std::size_t>(R[b + 1] - R[b]);
@@ -153,19 +121,43 @@ std::size_t holeCellsTriangleCount(
           n += 2 * w * h;
           break;
         case CellKind::Fanned:
-          n += 4;
+        {
+          bool fine[4];
           for (int side = South; side <= West; ++side)
           {
-            if (besideFullResolution(C, R, kind, a, b, side))
-            {
-              n += (side == South || side == North ? w : h) - 1;
-            }
+            fine[side] = fineCellSide(C, R, kind, a, b, side);
           }
+          n += fannedCellTriangleCount(static_cast<int>(w), static_cast<int>(h), fine);
           break;
+        }
       }
     }
   }
   return n;
+}
+
+std::size_t fannedCellTriangleCount(int w, int h, const bool fine[4])
+{
+  std::size_t n = 4;
+  for (int side = South; side <= West; ++side)
+  {
+    if (fine[side])
+    {
+      n += static_cast<std::size_t>(side == South || side == North ? w : h) - 1;
+    }
+  }
+  return n;
+}
+
+bool oneQuadFineSides(const Quadtree& qt, int block, bool fine[4])
+{
+  bool any = false;
+  for (int side = South; side <= West; ++side)
+  {
+    fine[side] = qt.sideAtFullResolution(block, side);
+    any = any || fine[side];
+  }
+  return any && qt.blockWidth(block) >= 2 && qt.blockHeight(block) >= 2;
 }
 
 } // namespace gmm

@@ -27,14 +27,33 @@ void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)
   const QuadtreeNode& n = qt.nodes[node];
   const int i0 = qt.colStart[n.colBegin], i1 = qt.colStart[n.colEnd];
   const int j0 = qt.rowStart[n.rowBegin], j1 = qt.rowStart[n.rowEnd];
-  for (int c = n.colBegin; c < n.colEnd; ++c)
-    out.push_back({ qt.colStart[c], j0 }); // south, west to east
-  for (int r = n.rowBegin; r < n.rowEnd; ++r)
-    out.push_back({ i1, qt.rowStart[r] }); // east, south to north
-  for (int c = n.colEnd; c > n.colBegin; --c)
-    out.push_back({ qt.colStart[c], j1 }); // north, east to west
-  for (int r = n.rowEnd; r > n.rowBegin; --r)
-    out.push_back({ i0, qt.rowStart[r] }); // west, north to south
+  // From each block corner along one border block's side: the next corner, or every sample
+  // when that side is at full resolution (a block with nodata across it).
+  const auto steps = [&](int block, int side) { return qt.sideAtFullResolution(block, side); };
+  for (int c = n.colBegin; c < n.colEnd; ++c) // south, west to east
+  {
+    const bool fine = steps(qt.blockIndex(c, n.rowBegin), South);
+    for (int i = qt.colStart[c]; i < qt.colStart[c + 1]; i = fine ? i + 1 : qt.colStart[c + 1])
+      out.push_back({ i, j0 });
+  }
+  for (int r = n.rowBegin; r < n.rowEnd; ++r) // east, south to north
+  {
+    const bool fine = steps(qt.blockIndex(n.colEnd - 1, r), East);
+    for (int j = qt.rowStart[r]; j < qt.rowStart[r + 1]; j = fine ? j + 1 : qt.rowStart[r + 1])
+      out.push_back({ i1, j });
+  }
+  for (int c = n.colEnd; c > n.colBegin; --c) // north, east to west
+  {
+    const bool fine = steps(qt.blockIndex(c - 1, n.rowEnd - 1), North);
+    for (int i = qt.colStart[c]; i > qt.colStart[c - 1]; i = fine ? i - 1 : qt.colStart[c - 1])
+      out.push_back({ i, j1 });
+  }
+  for (int r = n.rowEnd; r > n.rowBegin; --r) // west, north to south
+  {
+    const bool fine = steps(qt.blockIndex(n.colBegin, r - 1), West);
+    for (int j = qt.rowStart[r]; j > qt.rowStart[r - 1]; j = fine ? j - 1 : qt.rowStart[r - 1])
+      out.push_back({ i0, j });
+  }
 }
 
 namespace

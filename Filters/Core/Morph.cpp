@@ -308,7 +308,8 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   {
     // The edge level as Tessellate draws it: the coarser of two drawn blocks (both sides
     // agree), the block's top level beside a merged node (corners only: nothing on the
-    // edge moves, and the node's fan keeps its perimeter still).
+    // edge moves, and the node's fan keeps its perimeter still), 0 on a side at full
+    // resolution.
     const int b = drawn[k];
     configs[k] = blockConfigOf(qt, levels, b);
     drawnEdges[k] = edgesOf(qt, out, b);
@@ -325,9 +326,11 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     {
       continue;
     }
-    for (MorphEdge* e : drawnEdges[k])
+    for (int side = 0; side < 4; ++side)
     {
-      if (e->level == levels[b])
+      // A side at full resolution has every sample whatever the levels: nothing on it moves.
+      MorphEdge* e = drawnEdges[k][side];
+      if (e->level == levels[b] && !qt.sideAtFullResolution(b, side))
       {
         e->target = e->target < 0 ? out.blockTarget[b] : std::min(e->target, out.blockTarget[b]);
       }

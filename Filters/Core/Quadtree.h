@@ -82,6 +82,22 @@ struct Quadtree
       static_cast<uint64_t>(i - colStart[c]);
     return (nodataBits[nodataBitsAt[block] + bit / 64] >> (bit % 64)) & 1u;
   }
+  // Whether every sample of `block` (borders included) is nodata: nothing of it is drawn
+  // at any level.
+  bool everySampleNodata(int block) const
+  {
+    if (!blockHasNodata[block])
+    {
+      return false;
+    }
+    const uint64_t bits = static_cast<uint64_t>(blockWidth(block) + 1) * (blockHeight(block) + 1);
+    uint64_t set = 0;
+    for (uint64_t w = 0; w < (bits + 63) / 64; ++w)
+    {
+      set += static_cast<uint64_t>(__builtin_popcountll(nodataBits[nodataBitsAt[block] + w]));
+    }
+    return set == bits;
+  }
   // The blocks across the South, East, North and West sides of `block` (Tessellate.h's Side
   // order: low row, high column, high row, low column), -1 where the DEM ends.
   std::array<int, 4> blockNeighbours(int block) const
@@ -89,6 +105,20 @@ struct Quadtree
     const int c = block % blockCols, r = block / blockCols;
     return { r > 0 ? block - blockCols : -1, c + 1 < blockCols ? block + 1 : -1,
       r + 1 < blockRows ? block + blockCols : -1, c > 0 ? block - 1 : -1 };
+  }
+  // Whether `side` of `block` (blockNeighbours' order) is drawn with every sample along it,
+  // whatever the levels of the blocks on either side: the block or the one across holds
+  // nodata (HoleCells.h). Both blocks of an edge answer alike, so their samples agree. The
+  // one rule that tessellation, the error table, triangle counts, merged nodes and
+  // geomorphing read.
+  bool sideAtFullResolution(int block, int side) const
+  {
+    if (blockHasNodata[block])
+    {
+      return true;
+    }
+    const int nb = blockNeighbours(block)[side];
+    return nb >= 0 && blockHasNodata[nb];
   }
 };
 
@@ -122,15 +152,16 @@ std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int high
 // Nodata collars: the width, in quads, of the nodata that lines each border of the DEM.
 // A raster reprojected onto the engine's grid has wedges of nodata along its borders (the
 // reader's lon/lat tiles: up to 11 samples on the east and west of an SRTM3 tile at 47 N;
-// a UTM quad such as St Helens' USGS DEM), and a block with nodata in its side strips
-// stays at level 0 (HoleCells.h), so every border block used to be drawn at full resolution. A band as wide as the collar
-// keeps the wedge in thin blocks and leaves the blocks inside it free to coarsen.
+// a UTM quad such as St Helens' USGS DEM), and a block with nodata is drawn cell by cell
+// with its border at full resolution (HoleCells.h), far costlier than a clean block (before
+// those cells, every border block was drawn at full resolution). A band as wide as the
+// collar keeps the wedge in thin blocks and leaves the blocks inside it free of nodata.
 // Per side, each line across it (rows for West and East, columns for South and North)
 // counts its nodata samples from the border up to the first valid one. The collar is one
 // more than the longest count below maxBlockQuads - kMinBlockQuads, so that the band's
-// inner column (row) and the one before it are valid on every such line: the collar
-// blocks' strips towards the blocks inside then touch no nodata, and those blocks may
-// take any level. A longer run is a void or an empty line, which no thin band isolates.
+// inner column (row) and the one before it are valid on every such line: the blocks
+// inside hold no nodata and take any level (their side beside the collar at full
+// resolution, Quadtree::sideAtFullResolution). A longer run is a void or an empty line, which no thin band isolates.
 // 0 where no line starts with nodata. Lines within another side's collar are not counted
 // (a wedge along the west also starts the first columns with nodata seen from the north).
 struct NodataCollar

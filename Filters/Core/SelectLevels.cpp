@@ -119,9 +119,9 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
     {
       const int nb = neighbour[side];
       const int nbLevel = nb >= 0 ? levels[nb] : -1;
-      if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel))
+      if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel) || qt.sideAtFullResolution(b, side))
       {
-        continue; // no strip of the neighbour joins this edge
+        continue; // no strip of the neighbour joins this edge, or it does not follow b's level
       }
       // The beside path's errors are 0 up to the first link coarser than the neighbour; a
       // floor from that link alone skips most paths (rampPathFloor).

@@ -30,8 +30,10 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // mergedCentre (Tessellate.h), which changes those errors; 5: nodata collars have their
 // own bands (nodataCollar, Quadtree.h), which moves the blocks of a DEM with nodata along
 // a border, and the header holds a hash of the band starts (hashBands); 6: blocks with
-// nodata have finite errors at coarse levels (HoleCells.h).
-constexpr uint32_t kFormatVersion = 6;
+// nodata have finite errors at coarse levels (HoleCells.h); 7: blocks with nodata are
+// cells over their whole extent and every side beside nodata is at full resolution
+// (Quadtree::sideAtFullResolution), which changes their errors and their neighbours'.
+constexpr uint32_t kFormatVersion = 7;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 
@@ -243,6 +245,7 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
     out = ErrorTable();
     return path + ": checksum mismatch (corrupt)";
   }
+  fillCellTriangles(qt, out); // derived from the quadtree, not stored
   for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError, &out.mergedError })
   {
     if (!std::all_of(v->begin(), v->end(), tableValue))

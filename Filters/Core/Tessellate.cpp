@@ -40,18 +40,42 @@ void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
   }
 }
 
-// Inner grid of a ring block with nodata, cell by cell (HoleCells.h): cells holding or
-// beside nodata at full resolution, the cells beside those as fans from their centre over
-// their perimeter (every sample along a side shared with a full-resolution cell), the rest
-// as drawArea draws them.
+// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) as a fan from its centre
+// sample over its perimeter, which has every sample along the sides marked fine (in Side
+// order) and only the corners elsewhere.
+template <typename Sink>
+void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
+  std::vector<GridPoint>& perimeter)
+{
+  // Counter-clockwise from the south-west corner, each corner once.
+  perimeter.clear();
+  for (int i = i0; i < i1; i += fine[South] ? 1 : i1 - i0)
+    perimeter.push_back({ i, j0 });
+  for (int j = j0; j < j1; j += fine[East] ? 1 : j1 - j0)
+    perimeter.push_back({ i1, j });
+  for (int i = i1; i > i0; i -= fine[North] ? 1 : i1 - i0)
+    perimeter.push_back({ i, j1 });
+  for (int j = j1; j > j0; j -= fine[West] ? 1 : j1 - j0)
+    perimeter.push_back({ i0, j });
+  const GridPoint centre{ i0 + (i1 - i0) / 2, j0 + (j1 - j0) / 2 };
+  for (std::size_t k = 0; k < perimeter.size(); ++k)
+  {
+    sink.triangle(centre, perimeter[k], perimeter[(k + 1) % perimeter.size()]);
+  }
+}
+
+// A ring block with nodata, cell by cell over its whole extent (HoleCells.h): cells
+// holding nodata at full resolution, cells with a fine side (the block's border, or beside
+// a full-resolution cell) as fans from their centre over their perimeter, the rest as
+// drawArea draws them.
 template <typename Sink>
 void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vector<int>& R,
   const std::vector<CellKind>& kind, std::vector<GridPoint>& perimeter)
 {
-  const int nc = static_cast<int>(C.size()) - 3, nr = static_cast<int>(R.size()) - 3;
-  for (int b = 1; b <= nr; ++b)
+  const int nc = static_cast<int>(C.size()) - 1, nr = static_cast<int>(R.size()) - 1;
+  for (int b = 0; b < nr; ++b)
   {
-    for (int a = 1; a <= nc; ++a)
+    for (int a = 0; a < nc; ++a)
     {
       const int i0 = C[a], i1 = C[a + 1], j0 = R[b], j1 = R[b + 1];
       switch (cellAt(C, kind, a, b))
@@ -66,24 +90,10 @@ void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vecto
           break;
         case CellKind::Fanned:
         {
-          // Counter-clockwise from the south-west corner, each corner once.
-          perimeter.clear();
-          const bool fine[4] = { besideFullResolution(C, R, kind, a, b, South),
-            besideFullResolution(C, R, kind, a, b, East), besideFullResolution(C, R, kind, a, b, North),
-            besideFullResolution(C, R, kind, a, b, West) };
-          for (int i = i0; i < i1; i += fine[South] ? 1 : i1 - i0)
-            perimeter.push_back({ i, j0 });
-          for (int j = j0; j < j1; j += fine[East] ? 1 : j1 - j0)
-            perimeter.push_back({ i1, j });
-          for (int i = i1; i > i0; i -= fine[North] ? 1 : i1 - i0)
-            perimeter.push_back({ i, j1 });
-          for (int j = j1; j > j0; j -= fine[West] ? 1 : j1 - j0)
-            perimeter.push_back({ i0, j });
-          const GridPoint centre{ i0 + (i1 - i0) / 2, j0 + (j1 - j0) / 2 };
-          for (std::size_t k = 0; k < perimeter.size(); ++k)
-          {
-            sink.triangle(centre, perimeter[k], perimeter[(k + 1) % perimeter.size()]);
-          }
+          const bool fine[4] = { fineCellSide(C, R, kind, a, b, South),
+            fineCellSide(C, R, kind, a, b, East), fineCellSide(C, R, kind, a, b, North),
+            fineCellSide(C, R, kind, a, b, West) };
+          drawCellFan(sink, i0, j0, i1, j1, fine, perimeter);
           break;
         }
       }
@@ -92,7 +102,8 @@ void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vecto
 }
 
 // The cells of a ring block at `level` over C x R (HoleCells.h); none (empty) for a block
-// without nodata, and at level 0, where every cell is full resolution anyway.
+// without nodata, and at level 0, which draws every sample anyway (with its four edges at
+// full resolution: Quadtree::sideAtFullResolution).
 void holeCellsOf(const Quadtree& qt, int block, int level, const std::vector<int>& C,
   const std::vector<int>& R, std::vector<CellKind>& cells)
 {
@@ -171,9 +182,6 @@ void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
 // The two polylines of one side strip (Tessellate.h, sidePolylines), in the block's
 // counter-clockwise direction: the edge samples at the edge level (outer) and the inner
 // ring's samples along that side (inner).
-// Where the block's cells around nodata are in scratch.cells (HoleCells.h; empty when it
-// has none), the inner ring also has every sample along the full-resolution cells beside
-// it, as those cells do.
 void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<int>& R, int side,
   int edgeLevel, EmitScratch& scratch)
 {
@@ -183,10 +191,6 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
   outer.clear();
   inner.clear();
   const std::size_t k = C.size() - 1, L = R.size() - 1;
-  // Whether inner cell (a, b) (HoleCells.h's numbering) is drawn at full resolution.
-  const auto fine = [&](std::size_t a, std::size_t b) {
-    return cellAt(C, scratch.cells, static_cast<int>(a), static_cast<int>(b)) == CellKind::FullResolution;
-  };
   switch (side)
   {
     case South:
@@ -194,48 +198,28 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
       for (int x : edge)
         outer.push_back({ x, r.j0 });
       for (std::size_t u = 1; u < k; ++u)
-      {
         inner.push_back({ C[u], R[1] });
-        if (u + 1 < k && fine(u, 1))
-          for (int i = C[u] + 1; i < C[u + 1]; ++i)
-            inner.push_back({ i, R[1] });
-      }
       break;
     case East:
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
       for (int y : edge)
         outer.push_back({ r.i1, y });
       for (std::size_t t = 1; t < L; ++t)
-      {
         inner.push_back({ C[k - 1], R[t] });
-        if (t + 1 < L && fine(k - 2, t))
-          for (int j = R[t] + 1; j < R[t + 1]; ++j)
-            inner.push_back({ C[k - 1], j });
-      }
       break;
     case North:
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
       for (auto it = edge.rbegin(); it != edge.rend(); ++it)
         outer.push_back({ *it, r.j1 });
       for (std::size_t u = k - 1; u >= 1; --u)
-      {
         inner.push_back({ C[u], R[L - 1] });
-        if (u > 1 && fine(u - 1, L - 2))
-          for (int i = C[u] - 1; i > C[u - 1]; --i)
-            inner.push_back({ i, R[L - 1] });
-      }
       break;
     default: // West
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
       for (auto it = edge.rbegin(); it != edge.rend(); ++it)
         outer.push_back({ r.i0, *it });
       for (std::size_t t = L - 1; t >= 1; --t)
-      {
         inner.push_back({ C[1], R[t] });
-        if (t > 1 && fine(1, t - 1))
-          for (int j = R[t] - 1; j > R[t - 1]; --j)
-            inner.push_back({ C[1], j });
-      }
       break;
   }
 }
@@ -285,6 +269,13 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     }
     if (shape == BlockShape::OneQuad)
     {
+      bool fine[4];
+      if (oneQuadFineSides(qt, block, fine))
+      {
+        // A side at full resolution: the quad as one fanned cell (HoleCells.h).
+        drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner);
+        return;
+      }
       if (oneQuadAntiDiagonal(qt, block))
       {
         // The quad split along its (i1, j0)-(i0, j1) diagonal.
@@ -313,16 +304,18 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   edgeSamples(r.i0, r.i1, config.level, C);
   edgeSamples(r.j0, r.j1, config.level, R);
   holeCellsOf(qt, block, config.level, C, R, scratch.cells);
-  if (part == BlockPart::Whole || part == BlockPart::Inner)
+  if (!scratch.cells.empty())
   {
-    if (!scratch.cells.empty())
+    // Cells over the whole block, its border included: no side strips.
+    if (part == BlockPart::Whole || part == BlockPart::Inner)
     {
       drawAreaAroundHoles(sink, C, R, scratch.cells, scratch.inner);
     }
-    else
-    {
-      drawArea(sink, C, R);
-    }
+    return;
+  }
+  if (part == BlockPart::Whole || part == BlockPart::Inner)
+  {
+    drawArea(sink, C, R);
   }
   for (int side = South; side <= West; ++side)
   {
@@ -366,7 +359,6 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
   const BlockRect r = blockRect(qt, block);
   edgeSamples(r.i0, r.i1, config.level, scratch.cols);
   edgeSamples(r.j0, r.j1, config.level, scratch.rows);
-  holeCellsOf(qt, block, config.level, scratch.cols, scratch.rows, scratch.cells);
   sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch);
 }
 
@@ -384,6 +376,11 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   const int top = topLevel(qt.blockWidth(block), qt.blockHeight(block));
   for (int side = 0; side < 4; ++side)
   {
+    if (qt.sideAtFullResolution(block, side))
+    {
+      cfg.edgeLevel[side] = 0; // beside nodata: every sample, whatever the levels
+      continue;
+    }
     const int nb = neighbour[side];
     int nl = nb >= 0 ? levels[nb] : -1;
     if (nl == kCoveredLevel)

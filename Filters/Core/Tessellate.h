@@ -9,7 +9,9 @@
 // derive its samples from the edge level alone, so they agree and no crack or T-junction
 // can appear. Triangles are counter-clockwise seen from +z in world coordinates.
 // Triangles touching a nodata (NaN) sample are not emitted. A block with nodata at a level
-// above 0 draws its inner grid cell by cell around the nodata (HoleCells.h).
+// above 0 is drawn cell by cell around the nodata over its whole extent, without side
+// strips (HoleCells.h); every edge it shares is sampled at full resolution on both sides
+// (Quadtree::sideAtFullResolution), whatever the levels.
 #pragma once
 
 #include "HoleCells.h"
@@ -46,7 +48,9 @@ enum class BlockPart
 struct BlockConfig
 {
   int level = 0;                        // the block's own level (valid for the block)
-  std::array<int, 4> edgeLevel{ 0, 0, 0, 0 }; // per side, >= level (coarser neighbour) or == level
+  // Per side: >= level (the coarser neighbour's) or == level; 0 (every sample) on a side at
+  // full resolution (Quadtree::sideAtFullResolution), whatever the levels.
+  std::array<int, 4> edgeLevel{ 0, 0, 0, 0 };
 };
 
 struct GridPoint
@@ -90,6 +94,7 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
 // in from the border), both in the block's counter-clockwise direction. Every strip
 // triangle has its vertices on these two lines, which are one row (South, North) or
 // column (East, West) each. scratch.cols and rows get the block's samples at its level.
+// A block with nodata at a level above 0 has no strips (HoleCells.h).
 void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int side,
   EmitScratch& scratch);
 // The side strip between the polylines sidePolylines left in `lines` (appended): the same
@@ -99,12 +104,14 @@ void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridT
 // Merged nodes (hierarchical selection): a quadtree node drawn whole, far from the eye,
 // instead of one coarsest block per leaf. It is drawn as a fan from the block corner its
 // children share (mergedCentre) to its perimeter, and the perimeter passes through every
-// block corner on the node's border and nothing else. Over 2 x 2 blocks the fan is exactly
-// its four blocks drawn as one quad each (oneQuadAntiDiagonal, Quadtree.h), so merging
-// them, or splitting the node back into them, changes nothing drawn. A block beside it draws that side with its corners only
-// (the edge at the block's top level), and a merged neighbour has the same points along
-// the shared line (band boundaries are global), so no crack or T-junction can appear. The
-// fan does not depend on the neighbours: its error is one number per node (ErrorTable).
+// block corner on the node's border and nothing else, but for every sample along sides at
+// full resolution (beside a block with nodata). Over 2 x 2 blocks without such sides the
+// fan is exactly its four blocks drawn as one quad each (oneQuadAntiDiagonal, Quadtree.h),
+// so merging them, or splitting the node back into them, changes nothing drawn. A block
+// beside it draws that side with its corners only (the edge at the block's top level), and
+// a merged neighbour has the same points along the shared line (band boundaries are
+// global), so no crack or T-junction can appear. The fan does not depend on the
+// neighbours' levels: its error is one number per node (ErrorTable).
 // Blocks below a merged node carry kCoveredLevel in the level list.
 constexpr int8_t kCoveredLevel = -2;
 
@@ -124,7 +131,9 @@ bool mergeableNode(const Quadtree& qt, int node);
 GridPoint mergedCentre(const Quadtree& qt, int node);
 
 // The perimeter of a node, counter-clockwise in (i, j) from its south-west corner: every
-// block corner on its border, corners included, each once.
+// block corner on its border, corners included, each once, and every sample along a
+// border block's side at full resolution (a block with nodata across it,
+// Quadtree::sideAtFullResolution).
 void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out);
 
 // A merged node's fan, as indices (appended; triangles over nodata dropped as in
@@ -136,9 +145,10 @@ void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::ve
 void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out);
 
 // Edge level of each side of `block` given every block's level (-1 = not drawn,
-// kCoveredLevel = drawn by a merged node): the coarser of the two blocks when the
-// neighbour is drawn, the block's top level (corners only) beside a merged node, else the
-// block's own level.
+// kCoveredLevel = drawn by a merged node): 0 on a side at full resolution
+// (Quadtree::sideAtFullResolution), else the coarser of the two blocks when the neighbour
+// is drawn, the block's top level (corners only) beside a merged node, else the block's
+// own level.
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
 // Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in

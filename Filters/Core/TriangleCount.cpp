@@ -3,13 +3,13 @@
 #include "HoleCells.h"
 #include "Levels.h"
 
-#include <array>
 #include <vector>
 
 namespace gmm
 {
 
-std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig& config)
+std::size_t blockTriangleCount(
+  const Quadtree& qt, int block, const BlockConfig& config, const ErrorTable* table)
 {
   const int c = block % qt.blockCols, r = block / qt.blockCols;
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1];
@@ -18,7 +18,10 @@ std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig&
   switch (blockShape(w, h, config.level))
   {
     case BlockShape::OneQuad:
-      return 2;
+    {
+      bool fine[4];
+      return oneQuadFineSides(qt, block, fine) ? fannedCellTriangleCount(w, h, fine) : 2;
+    }
     case BlockShape::Thin:
       return 2 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     case BlockShape::Ring:
@@ -31,33 +34,28 @@ std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig&
   // step along either polyline: (edge samples - 1) + (inner ring samples - 1).
   const std::size_t nc = static_cast<std::size_t>(edgeSampleCount(i0, i1, config.level));
   const std::size_t nr = static_cast<std::size_t>(edgeSampleCount(j0, j1, config.level));
-  std::size_t n = 2 * (nc - 3) * (nr - 3);
-  // Cells around nodata may be drawn at full resolution (HoleCells.h), and the inner ring
-  // then has every sample along those beside it.
-  std::array<std::size_t, 4> innerExtra{ 0, 0, 0, 0 };
   if (config.level > 0 && qt.blockHasNodata[block])
   {
+    // Cells over the whole block, no strips (HoleCells.h).
+    if (table && !table->cellTriangles.empty())
+    {
+      return table->cellTriangles[static_cast<std::size_t>(block) * table->levels + config.level];
+    }
     std::vector<int> C, R;
     std::vector<CellKind> kind;
     edgeSamples(i0, i1, config.level, C);
     edgeSamples(j0, j1, config.level, R);
     classifyHoleCells(qt, block, C, R, kind);
-    if (!kind.empty())
-    {
-      n = holeCellsTriangleCount(C, R, kind);
-      for (int side = South; side <= West; ++side)
-      {
-        innerExtra[side] = innerRingExtraSamples(C, R, kind, side);
-      }
-    }
+    return holeCellsTriangleCount(C, R, kind);
   }
+  std::size_t n = 2 * (nc - 3) * (nr - 3);
   for (int side = South; side <= West; ++side)
   {
     const bool horizontal = side == South || side == North;
     const std::size_t edge = static_cast<std::size_t>(horizontal
         ? edgeSampleCount(i0, i1, config.edgeLevel[side])
         : edgeSampleCount(j0, j1, config.edgeLevel[side]));
-    const std::size_t inner = (horizontal ? nc : nr) - 2 + innerExtra[side];
+    const std::size_t inner = (horizontal ? nc : nr) - 2;
     n += (edge - 1) + (inner - 1);
   }
   return n;
@@ -65,8 +63,23 @@ std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig&
 
 std::size_t mergedNodeTriangleCount(const Quadtree& qt, int node)
 {
+  // One triangle per perimeter sample (mergedPerimeter): each border block's side adds its
+  // far corner, or every sample along it at full resolution.
   const QuadtreeNode& n = qt.nodes[node];
-  return 2 * static_cast<std::size_t>((n.colEnd - n.colBegin) + (n.rowEnd - n.rowBegin));
+  std::size_t count = 0;
+  for (int c = n.colBegin; c < n.colEnd; ++c)
+  {
+    const std::size_t w = static_cast<std::size_t>(qt.colStart[c + 1] - qt.colStart[c]);
+    count += qt.sideAtFullResolution(qt.blockIndex(c, n.rowBegin), South) ? w : 1;
+    count += qt.sideAtFullResolution(qt.blockIndex(c, n.rowEnd - 1), North) ? w : 1;
+  }
+  for (int r = n.rowBegin; r < n.rowEnd; ++r)
+  {
+    const std::size_t h = static_cast<std::size_t>(qt.rowStart[r + 1] - qt.rowStart[r]);
+    count += qt.sideAtFullResolution(qt.blockIndex(n.colBegin, r), West) ? h : 1;
+    count += qt.sideAtFullResolution(qt.blockIndex(n.colEnd - 1, r), East) ? h : 1;
+  }
+  return count;
 }
 
 } // namespace gmm

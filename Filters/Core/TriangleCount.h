@@ -6,6 +6,7 @@
 // bound. A block with nodata at a level above 0 counts its cells (HoleCells.h).
 #pragma once
 
+#include "ErrorTable.h"
 #include "Quadtree.h"
 #include "Tessellate.h"
 
@@ -15,11 +16,15 @@ namespace gmm
 {
 
 // Triangles of `block` drawn whole at `config` (its level must be valid for the block,
-// Levels.h; an invalid one draws nothing and counts 0).
-std::size_t blockTriangleCount(const Quadtree& qt, int block, const BlockConfig& config);
+// Levels.h; an invalid one draws nothing and counts 0). A block with nodata at a level
+// above 0 is read from table->cellTriangles when a table with them is given, else its
+// cells are classified here.
+std::size_t blockTriangleCount(
+  const Quadtree& qt, int block, const BlockConfig& config, const ErrorTable* table = nullptr);
 
 // Triangles of a merged node's fan (Tessellate.h, emitMergedNode): one per perimeter
-// point, i.e. 2 x (block columns + block rows) below the node.
+// point, i.e. 2 x (block columns + block rows) below the node, plus the samples along its
+// sides at full resolution.
 std::size_t mergedNodeTriangleCount(const Quadtree& qt, int node);
 
 } // namespace gmm

@@ -249,14 +249,20 @@ TEST(Nodata, BorderWedgesStayInTheirCollars)
 TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
-  // block 0. By hand (HoleCells.h): at level 4 the inner ring is that very sample and at
-  // 5 the one quad covers it, so at any error block 0's coarsest level is 3 (cells of 8
-  // quads; the four around (16, 16) at full resolution: 4 x 128 triangles less the 6 that
-  // touch it), the other blocks one quad each (the root cannot merge over nodata). Block
-  // 0's strips: the inner ring along its south and west has all 17 samples of the
-  // full-resolution cells' sides, joined to a border at level 3 (5 samples): 4 + 16
-  // triangles each; east and north join the same ring to the neighbours' corners: 1 + 16.
-  // Without the cells the block would draw its 2 048 full-resolution triangles less 6.
+  // block 0. By hand (HoleCells.h): block 0 is drawn cell by cell, its border at full
+  // resolution, and (16, 16) is a corner of the four cells around it at every level.
+  // - Level 2 (8 x 8 cells of 4 quads): those four at full resolution, 4 x 32 triangles
+  //   less the 6 that touch (16, 16): 122; the 8 cells beside them fanned over one fine
+  //   side, 4 + 3 each: 56; the 28 border cells fanned over their border side(s), 4 + 3
+  //   (+ 3 at the 4 corners): 24 x 7 + 4 x 10 = 208; the other 24 cells 2 each: 48.
+  //   434 triangles.
+  // - Level 1: 26 + 8 x 5 + 60 x 5 + 4 x 6 + 180 x 2 = 750; level 3 (cells of 8): 506 +
+  //   8 x 18 + 4 x 18 = 722, more than level 2, so not allowed; level 4: all four
+  //   16-quad cells at full resolution (2 042); level 5: one quad over the void.
+  // So at any error block 0 takes level 2. Blocks 1 and 2 (east and north of it) take
+  // their one-quad level as one fan over their side beside block 0 at full resolution:
+  // 4 + 31 triangles each; block 3 one quad (the root cannot merge over nodata).
+  // Without the cells block 0 would draw its 2 048 full-resolution triangles less 6.
   gmm::Heightfield hf;
   hf.nx = hf.ny = 65;
   hf.z.resize(65 * 65);
@@ -267,15 +273,57 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
   const gmm::FrameStats& s = e.updateForError(1e9);
-  EXPECT_EQ(e.levels()[0], 3);
+  EXPECT_EQ(e.levels()[0], 2);
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 128 - 6) + 2 * (4 + 16) + 2 * (1 + 16) + 3 * 2);
+  EXPECT_EQ(s.triangles, (4u * 32 - 6) + 8 * 7 + 24 * 7 + 4 * 10 + 24 * 2 + 2 * (4 + 31) + 2);
   EXPECT_EQ(e.indices().size(), 3 * s.triangles);
   expectNoNaNReferenced(hf, e.indices(), "interior void");
   checkFrame(e, "interior void", true);
   // The plane is drawn exactly wherever it is drawn: every drawn triangle's error is 0.
+  std::vector<gmm::GridTriangle> tris;
+  for (std::size_t t = 0; t < e.indices().size(); t += 3)
+  {
+    gmm::GridTriangle g;
+    for (int k = 0; k < 3; ++k)
+      g.v[k] = { static_cast<int>(e.indices()[t + k] % 65), static_cast<int>(e.indices()[t + k] / 65) };
+    tris.push_back(g);
+  }
+  EXPECT_EQ(gmm::trianglesError(hf, tris, true), 0.0f);
+}
+
+TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
+{
+  // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (32, 16): on the side
+  // blocks 0 and 1 share. Before the cells reached the border, a strip could not pass it
+  // and both blocks were drawn at full resolution. By hand (HoleCells.h), block 0 at
+  // level 2 (8 x 8 cells of 4 quads): the two cells east of column 28 that (32, 16) is a
+  // corner of at full resolution, 2 x 32 triangles less the 3 that touch it: 61; the 4
+  // corner cells fanned over two border sides, 4 + 3 + 3: 40; the other 22 border cells
+  // over one border side, 4 + 3, but the two beside the full-resolution cells over one more:
+  // 20 x 7 + 2 x 10 = 160; the 2 inner cells west of those, 4 + 3: 14; the other 34
+  // inner cells 2 each: 68. 343 triangles. Level 1 draws 707, level 3 431 and level 4
+  // 1 119 (more than level 2: not allowed), level 5 is one quad over the void. Block 1 is
+  // its mirror image: 343. Blocks 2 and 3 take their one-quad level, fanned over the side
+  // they share with a block with nodata: 4 + 31 each.
+  gmm::Heightfield hf;
+  hf.nx = hf.ny = 65;
+  hf.z.resize(65 * 65);
+  for (int j = 0; j < 65; ++j)
+    for (int i = 0; i < 65; ++i)
+      hf.z[hf.index(i, j)] = static_cast<float>(2 * i - 3 * j);
+  hf.z[hf.index(32, 16)] = kNaN;
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
+  const gmm::FrameStats& s = e.updateForError(1e9);
+  EXPECT_EQ(e.levels()[0], 2);
+  EXPECT_EQ(e.levels()[1], 2);
+  EXPECT_EQ(e.levels()[2], 5);
+  EXPECT_EQ(e.levels()[3], 5);
+  EXPECT_EQ(s.triangles, 2u * (61 + 40 + 160 + 14 + 68) + 2 * (4 + 31));
+  expectNoNaNReferenced(hf, e.indices(), "void on a border");
+  checkFrame(e, "void on a border", true);
   std::vector<gmm::GridTriangle> tris;
   for (std::size_t t = 0; t < e.indices().size(); t += 3)
   {
