@@ -1,11 +1,13 @@
 """Popping along a slow flight, geomorphing on against off, in one run.
 
     /usr/bin/python3 measure_popping.py [--dem FILE.png --spacing M --zscale S] [--n 1025]
-        [--tau 2] [--frames 120] [--step 0.02] [--block 64] [--size 1280x720] [--range R]
-        [--merges] [--quick]
+        [--dem FILE [--fill-voids]] [--tau 2] [--frames 120] [--step 0.02] [--block 64]
+        [--size 1280x720] [--range R] [--merges] [--quick]
 
 The terrain: a 16-bit PNG DEM (e.g. ../shared/data/ps_height_1k.png, --spacing 160
---zscale 0.1) or, by default, vtkGeoMipMapFractalSource (n x n, 30 m, seed 1). The camera
+--zscale 0.1), any other DEM through vtkGeoMipMapTerrainReader (e.g.
+../shared/data/mt_rainier_90m.tif: its voids stay nodata, or are filled with --fill-voids),
+or, by default, vtkGeoMipMapFractalSource (n x n, 30 m, seed 1). The camera
 flies a straight line across the middle of the terrain, --step blocks (block size x
 spacing) per frame, at 250 m above the highest summit, looking ahead and 20 degrees down.
 --merges turns on SetGeomorphMerges (merges wait for the geomorphing path) in both modes.
@@ -40,7 +42,17 @@ def arg(argv, name, default, kind=float):
 
 
 def load_terrain(argv):
-    if "--dem" in argv:
+    dem = argv[argv.index("--dem") + 1] if "--dem" in argv else None
+    if dem and not dem.lower().endswith(".png"):
+        # Any DEM the reader takes (GeoTIFF, SRTM .hgt, ...), its voids as NaN, or filled
+        # with --fill-voids (the reader's FillNodata).
+        import geomipmap
+        r = geomipmap.vtkGeoMipMapTerrainReader()
+        r.SetFileName(dem)
+        r.SetFillNodata("--fill-voids" in argv)
+        r.Update()
+        return r.GetOutput()
+    if dem:
         from vtkmodules.vtkIOImage import vtkPNGReader
         from vtkmodules.vtkImagingCore import vtkImageCast, vtkImageShiftScale
         r = vtkPNGReader()
