@@ -9,7 +9,8 @@ on (the default) the filter outputs the morphed heights gmm::morphedHeight compu
 CPU, so the two depth buffers must agree (up to float rounding: the shader computes in
 float, the filter in double); against the same triangles unmorphed they must not, or the
 test would prove nothing. With geomorphing off, the mapper draws the filter's mesh with
-geomorphing off (the coarsest levels within tau, unmorphed). Also:
+geomorphing off (the coarsest levels within tau, unmorphed); and over a copy with voids.
+Also:
 the drawn (morphed) surface measures within tau by the independent measure, the mapper's
 certified bound is <= tau, and no background shows through the morphed terrain (no crack).
 """
@@ -234,6 +235,30 @@ check(np.count_nonzero(seen8) > 0.3 * W * H and off8 <= 0.0005 * np.count_nonzer
 check_within_tau(check, image, ren, actor, mapper, "block 8, merges on the path")
 mapper.SetBlockSize(BLOCK)
 mapper.GeomorphMergesOff()
+
+# Voids: blocks with nodata are drawn as cells (gmm HoleCells.h) and do not morph, the
+# sides they share are at full resolution and do not move, and their neighbours morph
+# beside them. The GPU must agree with the CPU there as well.
+holed = refscene.fractal_image(257, 193, seed=5)
+zh = vtk_to_numpy(holed.GetPointData().GetScalars()).reshape(ny, nx)
+jj, ii = np.mgrid[0:ny, 0:nx]
+voids = ((40, 60, 4), (90, 100, 6), (150, 70, 3), (200, 140, 5), (60, 150, 4))
+for ci, cj, r in voids:
+    zh[np.hypot(ii - ci, jj - cj) <= r] = np.nan
+holed.Modified()
+mapper.SetInputData(holed)
+win.Render()
+gpu_h = refscene.depth(win)
+fh = new_filter(TAU, cam)
+fh.SetInputData(holed)
+fh.Update()
+cpu_h = depth_of(refscene.stock_actor(fh.GetOutput()))
+seen_h = cpu_h < 1.0
+off_h = np.count_nonzero(np.abs(gpu_h - cpu_h)[seen_h] > eps)
+check(np.count_nonzero(seen_h) > 0.3 * W * H and off_h <= 0.002 * np.count_nonzero(seen_h),
+      f"voids: GPU morph = CPU morph ({off_h} of {np.count_nonzero(seen_h)} pixels differ in depth)")
+check_within_tau(check, holed, ren, actor, mapper, "voids, morphed", uncovered_ok="as full resolution")
+mapper.SetInputData(image)
 
 mapper.GeomorphingOff()
 win.Render()
