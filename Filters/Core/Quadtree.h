@@ -113,12 +113,15 @@ struct Quadtree
   // geomorphing read.
   bool sideAtFullResolution(int block, int side) const
   {
-    if (blockHasNodata[block])
-    {
-      return true;
-    }
-    const int nb = blockNeighbours(block)[side];
-    return nb >= 0 && blockHasNodata[nb];
+    // A DEM without nodata (no bits) has none: skip the neighbour lookup on hot paths.
+    return !nodataBits.empty() && sideAtFullResolutionBeside(block, blockNeighbours(block)[side]);
+  }
+  // The same for the side shared with `neighbour` (blockNeighbours' entry, -1 at the DEM's
+  // border), for callers that have the neighbours already.
+  bool sideAtFullResolutionBeside(int block, int neighbour) const
+  {
+    return !nodataBits.empty() &&
+      (blockHasNodata[block] || (neighbour >= 0 && blockHasNodata[neighbour]));
   }
 };
 

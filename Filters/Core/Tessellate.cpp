@@ -376,12 +376,12 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   const int top = topLevel(qt.blockWidth(block), qt.blockHeight(block));
   for (int side = 0; side < 4; ++side)
   {
-    if (qt.sideAtFullResolution(block, side))
+    const int nb = neighbour[side];
+    if (qt.sideAtFullResolutionBeside(block, nb))
     {
       cfg.edgeLevel[side] = 0; // beside nodata: every sample, whatever the levels
       continue;
     }
-    const int nb = neighbour[side];
     int nl = nb >= 0 ? levels[nb] : -1;
     if (nl == kCoveredLevel)
     {
