@@ -336,7 +336,7 @@ def fixed_budget_mode(image, flight, args, size, out):
                 lo = mid
         ft = lod_mesh(image, s.ren, size, hi, 0)
         if ft.GetOutput().GetNumberOfPolys() > args.budget:
-            continue  # no tau-driven frame fits (blocks with nodata stay at level 0)
+            continue  # no tau-driven frame fits (the coarsest selection is over the budget)
         mt, _ = screen_error(image, s.ren, ft.GetOutput(), size)
         # The tau-driven frame's certified error, from the mapper itself at that tau.
         m.SetTriangleBudget(0)
