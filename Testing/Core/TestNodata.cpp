@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 using namespace gmmtest;
 
 namespace
@@ -246,6 +249,40 @@ TEST(Nodata, BorderWedgesStayInTheirCollars)
   }
 }
 
+namespace
+{
+// A 65 x 65 plane z = a i + b j with one nodata sample at (vi, vj).
+gmm::Heightfield planeWithOneVoid(float a, float b, int vi, int vj)
+{
+  gmm::Heightfield hf;
+  hf.nx = hf.ny = 65;
+  hf.z.resize(65 * 65);
+  for (int j = 0; j < 65; ++j)
+    for (int i = 0; i < 65; ++i)
+      hf.z[hf.index(i, j)] = a * i + b * j;
+  hf.z[hf.index(vi, vj)] = kNaN;
+  return hf;
+}
+
+// A frame over such a plane: no nodata referenced, checkFrame's watertightness and
+// coverage, and every drawn triangle exact (a plane is drawn exactly wherever it is drawn).
+void expectPlaneDrawnExactly(const gmm::Engine& e, const gmm::Heightfield& hf, const std::string& what)
+{
+  EXPECT_EQ(e.indices().size(), 3 * e.stats().triangles) << what;
+  expectNoNaNReferenced(hf, e.indices(), what);
+  checkFrame(e, what, true);
+  std::vector<gmm::GridTriangle> tris;
+  for (std::size_t t = 0; t < e.indices().size(); t += 3)
+  {
+    gmm::GridTriangle g;
+    for (int k = 0; k < 3; ++k)
+      g.v[k] = { static_cast<int>(e.indices()[t + k] % hf.nx), static_cast<int>(e.indices()[t + k] / hf.nx) };
+    tris.push_back(g);
+  }
+  EXPECT_EQ(gmm::trianglesError(hf, tris, true), 0.0f) << what;
+}
+} // namespace
+
 TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
@@ -263,13 +300,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   // their one-quad level as one fan over their side beside block 0 at full resolution:
   // 4 + 31 triangles each; block 3 one quad (the root cannot merge over nodata).
   // Without the cells block 0 would draw its 2 048 full-resolution triangles less 6.
-  gmm::Heightfield hf;
-  hf.nx = hf.ny = 65;
-  hf.z.resize(65 * 65);
-  for (int j = 0; j < 65; ++j)
-    for (int i = 0; i < 65; ++i)
-      hf.z[hf.index(i, j)] = static_cast<float>(3 * i + 2 * j);
-  hf.z[hf.index(16, 16)] = kNaN;
+  const gmm::Heightfield hf = planeWithOneVoid(3.0f, 2.0f, 16, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
   const gmm::FrameStats& s = e.updateForError(1e9);
@@ -278,19 +309,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
   EXPECT_EQ(s.triangles, (4u * 32 - 6) + 8 * 7 + 24 * 7 + 4 * 10 + 24 * 2 + 2 * (4 + 31) + 2);
-  EXPECT_EQ(e.indices().size(), 3 * s.triangles);
-  expectNoNaNReferenced(hf, e.indices(), "interior void");
-  checkFrame(e, "interior void", true);
-  // The plane is drawn exactly wherever it is drawn: every drawn triangle's error is 0.
-  std::vector<gmm::GridTriangle> tris;
-  for (std::size_t t = 0; t < e.indices().size(); t += 3)
-  {
-    gmm::GridTriangle g;
-    for (int k = 0; k < 3; ++k)
-      g.v[k] = { static_cast<int>(e.indices()[t + k] % 65), static_cast<int>(e.indices()[t + k] / 65) };
-    tris.push_back(g);
-  }
-  EXPECT_EQ(gmm::trianglesError(hf, tris, true), 0.0f);
+  expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
 TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
@@ -307,13 +326,7 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   // 1 119 (more than level 2: not allowed), level 5 is one quad over the void. Block 1 is
   // its mirror image: 343. Blocks 2 and 3 take their one-quad level, fanned over the side
   // they share with a block with nodata: 4 + 31 each.
-  gmm::Heightfield hf;
-  hf.nx = hf.ny = 65;
-  hf.z.resize(65 * 65);
-  for (int j = 0; j < 65; ++j)
-    for (int i = 0; i < 65; ++i)
-      hf.z[hf.index(i, j)] = static_cast<float>(2 * i - 3 * j);
-  hf.z[hf.index(32, 16)] = kNaN;
+  const gmm::Heightfield hf = planeWithOneVoid(2.0f, -3.0f, 32, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
   const gmm::FrameStats& s = e.updateForError(1e9);
@@ -322,15 +335,5 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
   EXPECT_EQ(s.triangles, 2u * (61 + 40 + 160 + 14 + 68) + 2 * (4 + 31));
-  expectNoNaNReferenced(hf, e.indices(), "void on a border");
-  checkFrame(e, "void on a border", true);
-  std::vector<gmm::GridTriangle> tris;
-  for (std::size_t t = 0; t < e.indices().size(); t += 3)
-  {
-    gmm::GridTriangle g;
-    for (int k = 0; k < 3; ++k)
-      g.v[k] = { static_cast<int>(e.indices()[t + k] % 65), static_cast<int>(e.indices()[t + k] / 65) };
-    tris.push_back(g);
-  }
-  EXPECT_EQ(gmm::trianglesError(hf, tris, true), 0.0f);
+  expectPlaneDrawnExactly(e, hf, "void on a border");
 }
