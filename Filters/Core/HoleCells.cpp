@@ -138,7 +138,7 @@ std::size_t holeCellsTriangleCount(
 
 std::size_t fannedCellTriangleCount(int w, int h, const bool fine[4])
 {
-  std::size_t n = 4;
+  std::size_t n = coarseCorner(fine) >= 0 ? 2 : 4;
   for (int side = South; side <= West; ++side)
   {
     if (fine[side])

@@ -40,9 +40,10 @@ void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
   }
 }
 
-// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) as a fan from its centre
-// sample over its perimeter, which has every sample along the sides marked fine (in Side
-// order) and only the corners elsewhere.
+// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) as a fan over its perimeter,
+// which has every sample along the sides marked fine (in Side order) and only the corners
+// elsewhere: from a corner between two coarse sides (HoleCells.h, coarseCorner), else from
+// its centre sample.
 template <typename Sink>
 void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
   std::vector<GridPoint>& perimeter)
@@ -57,6 +58,22 @@ void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
     perimeter.push_back({ i, j1 });
   for (int j = j1; j > j0; j -= fine[West] ? 1 : j1 - j0)
     perimeter.push_back({ i0, j });
+  const int corner = coarseCorner(fine);
+  if (corner >= 0)
+  {
+    // From that corner: every other perimeter sample lies on a side away from it.
+    const GridPoint apex = corner == 0 ? GridPoint{ i0, j0 } : corner == 1 ? GridPoint{ i1, j0 }
+      : corner == 2 ? GridPoint{ i1, j1 } : GridPoint{ i0, j1 };
+    std::size_t at = 0;
+    while (perimeter[at].i != apex.i || perimeter[at].j != apex.j)
+      ++at;
+    const std::size_t n = perimeter.size();
+    for (std::size_t k = 1; k + 1 < n; ++k)
+    {
+      sink.triangle(apex, perimeter[(at + k) % n], perimeter[(at + k + 1) % n]);
+    }
+    return;
+  }
   const GridPoint centre{ i0 + (i1 - i0) / 2, j0 + (j1 - j0) / 2 };
   for (std::size_t k = 0; k < perimeter.size(); ++k)
   {
@@ -66,7 +83,7 @@ void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
 
 // A ring block with nodata, cell by cell over its whole extent (HoleCells.h): cells
 // holding nodata at full resolution, cells with a fine side (the block's border, or beside
-// a full-resolution cell) as fans from their centre over their perimeter, the rest as
+// a full-resolution cell) as fans over their perimeter (drawCellFan), the rest as
 // drawArea draws them.
 template <typename Sink>
 void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vector<int>& R,

@@ -287,18 +287,20 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
   // block 0. By hand (HoleCells.h): block 0 is drawn cell by cell, its border at full
-  // resolution, and (16, 16) is a corner of the four cells around it at every level.
+  // resolution, and (16, 16) is a corner of the four cells around it at every level. A
+  // fanned cell has one triangle per perimeter sample, two fewer when fanned from a corner
+  // between two coarse sides (coarseCorner).
   // - Level 2 (8 x 8 cells of 4 quads): those four at full resolution, 4 x 32 triangles
-  //   less the 6 that touch (16, 16): 122; the 8 cells beside them fanned over one fine
-  //   side, 4 + 3 each: 56; the 28 border cells fanned over their border side(s), 4 + 3
-  //   (+ 3 at the 4 corners): 24 x 7 + 4 x 10 = 208; the other 24 cells 2 each: 48.
-  //   434 triangles.
-  // - Level 1: 26 + 8 x 5 + 60 x 5 + 4 x 6 + 180 x 2 = 750; level 3 (cells of 8): 506 +
-  //   8 x 18 + 4 x 18 = 722, more than level 2, so not allowed; level 4: all four
-  //   16-quad cells at full resolution (2 042); level 5: one quad over the void.
+  //   less the 6 that touch (16, 16): 122; the 8 cells beside them with one fine side,
+  //   from a corner, 4 + 3 - 2 each: 40; the 28 border cells over their border side(s)
+  //   from a corner: 24 x 5 + 4 x 8 = 152; the other 24 cells 2 each: 48. 362 triangles.
+  // - Level 1: 26 + 8 x 3 + 56 x 3 + 4 x 4 + 184 x 2 = 602; level 3 (cells of 8): 506 +
+  //   4 x 16 + 8 x 18 (border cells between a border side and a full-resolution cell,
+  //   fanned from their centre) = 714, more than level 2, so not allowed; level 4: all four
+  //   16-quad cells at full resolution; level 5: one quad over the void.
   // So at any error block 0 takes level 2. Blocks 1 and 2 (east and north of it) take
   // their one-quad level as one fan over their side beside block 0 at full resolution:
-  // 4 + 31 triangles each; block 3 one quad (the root cannot merge over nodata).
+  // 4 + 31 - 2 triangles each; block 3 one quad (the root cannot merge over nodata).
   // Without the cells block 0 would draw its 2 048 full-resolution triangles less 6.
   const gmm::Heightfield hf = planeWithOneVoid(3.0f, 2.0f, 16, 16);
   gmm::Engine e;
@@ -308,7 +310,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 32 - 6) + 8 * 7 + 24 * 7 + 4 * 10 + 24 * 2 + 2 * (4 + 31) + 2);
+  EXPECT_EQ(s.triangles, (4u * 32 - 6) + 8 * 5 + 24 * 5 + 4 * 8 + 24 * 2 + 2 * (4 + 31 - 2) + 2);
   expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
@@ -316,16 +318,16 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (32, 16): on the side
   // blocks 0 and 1 share. Before the cells reached the border, a strip could not pass it
-  // and both blocks were drawn at full resolution. By hand (HoleCells.h), block 0 at
-  // level 2 (8 x 8 cells of 4 quads): the two cells east of column 28 that (32, 16) is a
-  // corner of at full resolution, 2 x 32 triangles less the 3 that touch it: 61; the 4
-  // corner cells fanned over two border sides, 4 + 3 + 3: 40; the other 22 border cells
-  // over one border side, 4 + 3, but the two beside the full-resolution cells over one more:
-  // 20 x 7 + 2 x 10 = 160; the 2 inner cells west of those, 4 + 3: 14; the other 34
-  // inner cells 2 each: 68. 343 triangles. Level 1 draws 707, level 3 431 and level 4
-  // 1 119 (more than level 2: not allowed), level 5 is one quad over the void. Block 1 is
-  // its mirror image: 343. Blocks 2 and 3 take their one-quad level, fanned over the side
-  // they share with a block with nodata: 4 + 31 each.
+  // and both blocks were drawn at full resolution. By hand (HoleCells.h, fans as in the
+  // test above), block 0 at level 2 (8 x 8 cells of 4 quads): the two cells east of column
+  // 28 that (32, 16) is a corner of at full resolution, 2 x 32 triangles less the 3 that
+  // touch it: 61; the 4 corner cells over two border sides, 4 + 3 + 3 - 2: 32; the other 22
+  // border cells over one border side, 4 + 3 - 2, but the two beside the full-resolution
+  // cells over one more: 20 x 5 + 2 x 8 = 116; the 2 inner cells west of those,
+  // 4 + 3 - 2: 10; the other 34 inner cells 2 each: 68. 287 triangles. Level 1 draws 587,
+  // level 3 411 and level 4 over 1 021 (more than level 2: not allowed), level 5 is one
+  // quad over the void. Block 1 is its mirror image: 287. Blocks 2 and 3 take their
+  // one-quad level, fanned over the side they share with a block with nodata: 4 + 31 - 2.
   const gmm::Heightfield hf = planeWithOneVoid(2.0f, -3.0f, 32, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
@@ -334,6 +336,6 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   EXPECT_EQ(e.levels()[1], 2);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, 2u * (61 + 40 + 160 + 14 + 68) + 2 * (4 + 31));
+  EXPECT_EQ(s.triangles, 2u * (61 + 32 + 116 + 10 + 68) + 2 * (4 + 31 - 2));
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }
