@@ -258,6 +258,11 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   return std::string();
 }
 
+uint32_t tableCacheFormatVersion()
+{
+  return kFormatVersion;
+}
+
 std::string writeTableCache(
   const std::string& path, const TableCacheKey& key, const Quadtree& qt, const ErrorTable& table)
 {

@@ -18,7 +18,8 @@
 // merged-node errors, version 3 made more of them exact (ErrorTable.h), version 4 follows
 // the one-quad diagonals and fan centres of Tessellate.h, version 5 the nodata collars'
 // bands (Quadtree.h) and the band hash, version 6 the coarse levels of blocks with nodata
-// (HoleCells.h); an older file is reported as such and rebuilt.
+// (HoleCells.h), 7 and 8 their cells up to the border and their fans; an older file is
+// reported as such and rebuilt.
 #pragma once
 
 #include "ErrorTable.h"
@@ -79,6 +80,12 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
 // needed). Returns "" or why it could not (e.g. a read-only location).
 std::string writeTableCache(
   const std::string& path, const TableCacheKey& key, const Quadtree& qt, const ErrorTable& table);
+
+// The format version files are written with and read back at (TableCache.cpp). It changes
+// whenever the tables' meaning does: what Tessellate draws, how ErrorTable measures it, the
+// band layout. TableCache.FormatVersionFollowsTheTables holds the version and a hash of a
+// reference table, and fails when one changes without the other.
+uint32_t tableCacheFormatVersion();
 
 // Removes the least recently written table files of `directory` until the rest take at
 // most `maxBytes`; other files are never touched.

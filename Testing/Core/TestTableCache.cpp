@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <limits>
 
 #include <chrono>
@@ -307,4 +308,53 @@ TEST(TableCache, TrimRemovesTheOldestTablesOnly)
   EXPECT_TRUE(fs::exists(rb.path));
   EXPECT_FALSE(fs::exists(rc.path));
   EXPECT_TRUE(fs::exists(rd.path));
+}
+
+// A cache file is trusted when its format version matches, so a change to what the tables
+// hold (what Tessellate draws, how ErrorTable measures it, the bands) without a new version
+// makes every build read stale tables and report bounds that do not hold: it happened twice
+// (session 10: TestFlyRealDEM certified 1.89 px at tau 1 from another tree's cache; session
+// 11: fans from a corner measured 1.09 px at tau 1 in TestFillVoidsRender). This test holds
+// the version and a hash of the table of one reference DEM (integer-built heights, voids
+// inside, on block borders and in a border wedge; block 16, merged nodes): when the tables
+// change, it fails until kFormatVersion is raised and the new pair recorded here.
+TEST(TableCache, FormatVersionFollowsTheTables)
+{
+  gmm::Heightfield hf;
+  hf.nx = 97;
+  hf.ny = 81;
+  hf.z.resize(static_cast<std::size_t>(hf.nx) * hf.ny);
+  for (int j = 0; j < hf.ny; ++j)
+    for (int i = 0; i < hf.nx; ++i)
+    {
+      const uint32_t h = (static_cast<uint32_t>(i) * 73856093u) ^ (static_cast<uint32_t>(j) * 19349663u);
+      float z = static_cast<float>(h % 997u) * 0.25f + 0.5f * static_cast<float>(i) + 0.25f * static_cast<float>(j);
+      const bool wedge = i < (j % 5);
+      const bool crossing = (i - 32) * (i - 32) + (j - 40) * (j - 40) <= 9; // on a block border
+      const bool inside = (i == 50 && j == 20) || (i >= 70 && i <= 73 && j >= 58 && j <= 60);
+      if (wedge || crossing || inside)
+        z = std::numeric_limits<float>::quiet_NaN();
+      hf.z[hf.index(i, j)] = z;
+    }
+  const gmm::Quadtree qt = gmm::buildQuadtree(hf, 16);
+  const gmm::ErrorTable t = gmm::buildErrorTable(hf, qt, 1);
+  uint64_t hash = 1469598103934665603ull; // FNV-1a over the table's arrays
+  auto add = [&hash](const void* data, std::size_t bytes) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < bytes; ++k)
+      hash = (hash ^ p[k]) * 1099511628211ull;
+  };
+  add(t.ownError.data(), t.ownError.size() * sizeof(float));
+  add(t.ownErrorExact.data(), t.ownErrorExact.size() * sizeof(float));
+  add(t.stripError.data(), t.stripError.size() * sizeof(float));
+  add(t.mergedError.data(), t.mergedError.size() * sizeof(float));
+  add(t.cellTriangles.data(), t.cellTriangles.size() * sizeof(uint32_t));
+  const uint32_t recordedVersion = 8;
+  const uint64_t recordedHash = 0x87c5105e6bfacd92ull;
+  char hex[32];
+  std::snprintf(hex, sizeof hex, "0x%016llx", static_cast<unsigned long long>(hash));
+  EXPECT_TRUE(gmm::tableCacheFormatVersion() == recordedVersion && hash == recordedHash)
+    << "format version " << gmm::tableCacheFormatVersion() << ", table hash " << hex
+    << "; recorded: version " << recordedVersion << ". If the tables changed, raise kFormatVersion "
+    << "(TableCache.cpp) and record the new version and hash here.";
 }
