@@ -27,14 +27,9 @@ int neighbourCell(int nc, int nr, int a, int b, int side)
 bool anyFineSide(const std::vector<int>& C, const std::vector<int>& R,
   const std::vector<CellKind>& kind, int a, int b)
 {
-  for (int side = South; side <= West; ++side)
-  {
-    if (fineCellSide(C, R, kind, a, b, side))
-    {
-      return true;
-    }
-  }
-  return false;
+  bool fine[4];
+  fineCellSides(C, R, kind, a, b, fine);
+  return fine[South] || fine[East] || fine[North] || fine[West];
 }
 } // namespace
 
@@ -101,6 +96,15 @@ bool fineCellSide(const std::vector<int>& C, const std::vector<int>& R,
   return n < 0 || kind[n] == CellKind::FullResolution;
 }
 
+void fineCellSides(const std::vector<int>& C, const std::vector<int>& R,
+  const std::vector<CellKind>& kind, int a, int b, bool fine[4])
+{
+  for (int side = South; side <= West; ++side)
+  {
+    fine[side] = fineCellSide(C, R, kind, a, b, side);
+  }
+}
+
 std::size_t holeCellsTriangleCount(
   const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind)
 {
@@ -123,10 +127,7 @@ std::size_t holeCellsTriangleCount(
         case CellKind::Fanned:
         {
           bool fine[4];
-          for (int side = South; side <= West; ++side)
-          {
-            fine[side] = fineCellSide(C, R, kind, a, b, side);
-          }
+          fineCellSides(C, R, kind, a, b, fine);
           n += fannedCellTriangleCount(static_cast<int>(w), static_cast<int>(h), fine);
           break;
         }

@@ -65,6 +65,9 @@ inline CellKind cellAt(const std::vector<int>& C, const std::vector<CellKind>& k
 // its fine sides.
 bool fineCellSide(const std::vector<int>& C, const std::vector<int>& R,
   const std::vector<CellKind>& kind, int a, int b, int side);
+// fineCellSide for each side of cell (a, b), in Side order.
+void fineCellSides(const std::vector<int>& C, const std::vector<int>& R,
+  const std::vector<CellKind>& kind, int a, int b, bool fine[4]);
 
 // The corner (0 south-west, 1 south-east, 2 north-east, 3 north-west) of a Fanned cell
 // whose two sides are both coarse, from which it is fanned (its perimeter less two

@@ -29,28 +29,27 @@ void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out)
   const int j0 = qt.rowStart[n.rowBegin], j1 = qt.rowStart[n.rowEnd];
   // From each block corner along one border block's side: the next corner, or every sample
   // when that side is at full resolution (a block with nodata across it).
-  const auto steps = [&](int block, int side) { return qt.sideAtFullResolution(block, side); };
   for (int c = n.colBegin; c < n.colEnd; ++c) // south, west to east
   {
-    const bool fine = steps(qt.blockIndex(c, n.rowBegin), South);
+    const bool fine = qt.sideAtFullResolution(qt.blockIndex(c, n.rowBegin), South);
     for (int i = qt.colStart[c]; i < qt.colStart[c + 1]; i = fine ? i + 1 : qt.colStart[c + 1])
       out.push_back({ i, j0 });
   }
   for (int r = n.rowBegin; r < n.rowEnd; ++r) // east, south to north
   {
-    const bool fine = steps(qt.blockIndex(n.colEnd - 1, r), East);
+    const bool fine = qt.sideAtFullResolution(qt.blockIndex(n.colEnd - 1, r), East);
     for (int j = qt.rowStart[r]; j < qt.rowStart[r + 1]; j = fine ? j + 1 : qt.rowStart[r + 1])
       out.push_back({ i1, j });
   }
   for (int c = n.colEnd; c > n.colBegin; --c) // north, east to west
   {
-    const bool fine = steps(qt.blockIndex(c - 1, n.rowEnd - 1), North);
+    const bool fine = qt.sideAtFullResolution(qt.blockIndex(c - 1, n.rowEnd - 1), North);
     for (int i = qt.colStart[c]; i > qt.colStart[c - 1]; i = fine ? i - 1 : qt.colStart[c - 1])
       out.push_back({ i, j1 });
   }
   for (int r = n.rowEnd; r > n.rowBegin; --r) // west, north to south
   {
-    const bool fine = steps(qt.blockIndex(n.colBegin, r - 1), West);
+    const bool fine = qt.sideAtFullResolution(qt.blockIndex(n.colBegin, r - 1), West);
     for (int j = qt.rowStart[r]; j > qt.rowStart[r - 1]; j = fine ? j - 1 : qt.rowStart[r - 1])
       out.push_back({ i0, j });
   }

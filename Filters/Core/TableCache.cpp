@@ -246,7 +246,6 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
     out = ErrorTable();
     return path + ": checksum mismatch (corrupt)";
   }
-  fillCellTriangles(qt, out); // derived from the quadtree, not stored
   for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError, &out.mergedError })
   {
     if (!std::all_of(v->begin(), v->end(), tableValue))
@@ -255,6 +254,7 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
       return path + ": holds values no table can hold";
     }
   }
+  fillCellTriangles(qt, out); // derived from the quadtree, not stored; only for a table kept
   return std::string();
 }
 

@@ -107,9 +107,8 @@ void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vecto
           break;
         case CellKind::Fanned:
         {
-          const bool fine[4] = { fineCellSide(C, R, kind, a, b, South),
-            fineCellSide(C, R, kind, a, b, East), fineCellSide(C, R, kind, a, b, North),
-            fineCellSide(C, R, kind, a, b, West) };
+          bool fine[4];
+          fineCellSides(C, R, kind, a, b, fine);
           drawCellFan(sink, i0, j0, i1, j1, fine, perimeter);
           break;
         }
