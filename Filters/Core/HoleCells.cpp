@@ -1,153 +1,215 @@
 #include "HoleCells.h"
 
+#include "Levels.h"
 #include "Tessellate.h"
+
+#include <algorithm>
 
 namespace gmm
 {
 
 namespace
 {
-// The cell across `side` of cell (a, b) in a grid of nc x nr cells, or -1 across the
-// block's border.
-int neighbourCell(int nc, int nr, int a, int b, int side)
+// Where a cell side [lo, hi] is split: at the largest power of two below its length from
+// lo, which is the next level's sample (lo is a multiple of the cell's level step from the
+// block's first sample); hi when it is one quad and is not split.
+int splitPoint(int lo, int hi)
 {
-  switch (side)
+  const int n = hi - lo;
+  if (n < 2)
   {
-    case South:
-      return b > 0 ? (b - 1) * nc + a : -1;
-    case East:
-      return a + 1 < nc ? b * nc + a + 1 : -1;
-    case North:
-      return b + 1 < nr ? (b + 1) * nc + a : -1;
-    default: // West
-      return a > 0 ? b * nc + a - 1 : -1;
+    return hi;
+  }
+  int step = 1;
+  while (step * 2 < n)
+  {
+    step *= 2;
+  }
+  return lo + step;
+}
+
+// Appends the cells `cell` splits into (two or four, each with its nodata flag unset).
+void splitCell(const HoleCell& cell, std::vector<HoleCell>& out)
+{
+  const int im = splitPoint(cell.i0, cell.i1), jm = splitPoint(cell.j0, cell.j1);
+  const int is[3] = { cell.i0, im, cell.i1 }, js[3] = { cell.j0, jm, cell.j1 };
+  for (int b = 0; b < 2; ++b)
+  {
+    for (int a = 0; a < 2; ++a)
+    {
+      if (is[a + 1] > is[a] && js[b + 1] > js[b])
+      {
+        out.push_back({ is[a], js[b], is[a + 1], js[b + 1], false });
+      }
+    }
   }
 }
 
-bool anyFineSide(const std::vector<int>& C, const std::vector<int>& R,
-  const std::vector<CellKind>& kind, int a, int b)
+// Nodata samples in [i0, i1] x [j0, j1] (inclusive), from the summed table.
+uint32_t nodataIn(const HoleCells& h, const HoleCell& c)
 {
-  bool fine[4];
-  fineCellSides(C, R, kind, a, b, fine);
-  return fine[South] || fine[East] || fine[North] || fine[West];
+  const std::size_t stride = static_cast<std::size_t>(h.width) + 2;
+  const std::size_t x0 = c.i0 - h.i0, x1 = c.i1 - h.i0 + 1, y0 = c.j0 - h.j0, y1 = c.j1 - h.j0 + 1;
+  const std::vector<uint32_t>& s = h.nodataBelow;
+  return s[y1 * stride + x1] - s[y0 * stride + x1] - s[y1 * stride + x0] + s[y0 * stride + x0];
+}
+
+// The vertices: every cell's corners and the block's border.
+void markVertices(HoleCells& h)
+{
+  const std::size_t w = static_cast<std::size_t>(h.width) + 1;
+  h.vertex.assign(w * (static_cast<std::size_t>(h.height) + 1), 0);
+  for (std::size_t x = 0; x < w; ++x)
+  {
+    h.vertex[x] = h.vertex[h.height * w + x] = 1;
+  }
+  for (int y = 0; y <= h.height; ++y)
+  {
+    h.vertex[y * w] = h.vertex[y * w + h.width] = 1;
+  }
+  for (const HoleCell& c : h.cells)
+  {
+    const std::size_t x0 = c.i0 - h.i0, x1 = c.i1 - h.i0, y0 = c.j0 - h.j0, y1 = c.j1 - h.j0;
+    h.vertex[y0 * w + x0] = h.vertex[y0 * w + x1] = h.vertex[y1 * w + x0] = h.vertex[y1 * w + x1] = 1;
+  }
+}
+
+// Vertices strictly inside each side of a clean cell, in Side order.
+void sideVertexCounts(const HoleCells& h, const HoleCell& c, int count[4])
+{
+  count[South] = count[East] = count[North] = count[West] = 0;
+  for (int i = c.i0 + 1; i < c.i1; ++i)
+  {
+    count[South] += h.isVertex(i, c.j0);
+    count[North] += h.isVertex(i, c.j1);
+  }
+  for (int j = c.j0 + 1; j < c.j1; ++j)
+  {
+    count[East] += h.isVertex(c.i1, j);
+    count[West] += h.isVertex(c.i0, j);
+  }
 }
 } // namespace
 
-void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
-  const std::vector<int>& R, std::vector<CellKind>& kind)
+void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out)
 {
-  const int nc = static_cast<int>(C.size()) - 1, nr = static_cast<int>(R.size()) - 1;
-  kind.assign(static_cast<std::size_t>(nc) * nr, CellKind::Plain);
-  for (int b = 0; b < nr; ++b)
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  out.i0 = qt.colStart[c];
+  out.j0 = qt.rowStart[r];
+  out.width = qt.colStart[c + 1] - out.i0;
+  out.height = qt.rowStart[r + 1] - out.j0;
+  // Summed nodata counts: nodataBelow[y][x] counts the nodata samples left of x and below y.
+  const std::size_t stride = static_cast<std::size_t>(out.width) + 2;
+  out.nodataBelow.assign(stride * (static_cast<std::size_t>(out.height) + 2), 0);
+  for (int y = 0; y <= out.height; ++y)
   {
-    for (int a = 0; a < nc; ++a)
+    uint32_t row = 0;
+    for (int x = 0; x <= out.width; ++x)
     {
-      bool nodata = false;
-      for (int j = R[b]; j <= R[b + 1] && !nodata; ++j)
+      row += qt.sampleIsNodata(block, out.i0 + x, out.j0 + y) ? 1u : 0u;
+      out.nodataBelow[(y + 1) * stride + x + 1] = out.nodataBelow[y * stride + x + 1] + row;
+    }
+  }
+  // The level's cells, each split down towards its nodata (depth first, so that a cell's
+  // pieces stay together in drawing order).
+  std::vector<int> C, R;
+  edgeSamples(out.i0, out.i0 + out.width, level, C);
+  edgeSamples(out.j0, out.j0 + out.height, level, R);
+  out.cells.clear();
+  std::vector<HoleCell> pending;
+  for (std::size_t b = 0; b + 1 < R.size(); ++b)
+  {
+    for (std::size_t a = 0; a + 1 < C.size(); ++a)
+    {
+      pending.push_back({ C[a], R[b], C[a + 1], R[b + 1], false });
+      while (!pending.empty())
       {
-        for (int i = C[a]; i <= C[a + 1] && !nodata; ++i)
+        HoleCell cell = pending.back();
+        pending.pop_back();
+        if (nodataIn(out, cell) == 0)
         {
-          nodata = qt.sampleIsNodata(block, i, j);
+          out.cells.push_back(cell);
         }
-      }
-      if (nodata)
-      {
-        kind[static_cast<std::size_t>(b) * nc + a] = CellKind::FullResolution;
+        else if (cell.i1 - cell.i0 == 1 && cell.j1 - cell.j0 == 1)
+        {
+          cell.nodata = true;
+          out.cells.push_back(cell);
+        }
+        else
+        {
+          const std::size_t first = pending.size();
+          splitCell(cell, pending);
+          std::reverse(pending.begin() + first, pending.end()); // south-west piece first
+        }
       }
     }
   }
-  // A cell with a fine side needs a sample inside for its fan; a cell under 2 quads wide
-  // or tall (a level's narrower last column or row) has none, so it is drawn at full
-  // resolution too, which may give its neighbours fine sides in turn.
-  for (bool grew = true; grew;)
+  // A clean cell one quad wide or tall whose vertices leave it no corner to fan from has no
+  // centre sample either: split it too, which adds vertices to its neighbours, until none
+  // is left (single quads always have a corner).
+  for (bool split = true; split;)
   {
-    grew = false;
-    for (int b = 0; b < nr; ++b)
+    markVertices(out);
+    split = false;
+    pending.clear();
+    for (const HoleCell& cell : out.cells)
     {
-      for (int a = 0; a < nc; ++a)
+      bool inside[4];
+      if (!cell.nodata && (cell.i1 - cell.i0 < 2 || cell.j1 - cell.j0 < 2))
       {
-        CellKind& k = kind[static_cast<std::size_t>(b) * nc + a];
-        if (k == CellKind::Plain && (C[a + 1] - C[a] < 2 || R[b + 1] - R[b] < 2) &&
-          anyFineSide(C, R, kind, a, b))
+        cellSidesWithVertices(out, cell, inside);
+        if (coarseCorner(inside) < 0)
         {
-          k = CellKind::FullResolution;
-          grew = true;
+          splitCell(cell, pending);
+          split = true;
+          continue;
         }
       }
+      pending.push_back(cell);
     }
-  }
-  for (int b = 0; b < nr; ++b)
-  {
-    for (int a = 0; a < nc; ++a)
-    {
-      CellKind& k = kind[static_cast<std::size_t>(b) * nc + a];
-      if (k == CellKind::Plain && anyFineSide(C, R, kind, a, b))
-      {
-        k = CellKind::Fanned;
-      }
-    }
+    out.cells.swap(pending);
   }
 }
 
-bool fineCellSide(const std::vector<int>& C, const std::vector<int>& R,
-  const std::vector<CellKind>& kind, int a, int b, int side)
+void cellSidesWithVertices(const HoleCells& cells, const HoleCell& cell, bool inside[4])
 {
-  const int n = neighbourCell(static_cast<int>(C.size()) - 1, static_cast<int>(R.size()) - 1, a, b, side);
-  return n < 0 || kind[n] == CellKind::FullResolution;
-}
-
-void fineCellSides(const std::vector<int>& C, const std::vector<int>& R,
-  const std::vector<CellKind>& kind, int a, int b, bool fine[4])
-{
+  int count[4];
+  sideVertexCounts(cells, cell, count);
   for (int side = South; side <= West; ++side)
   {
-    fine[side] = fineCellSide(C, R, kind, a, b, side);
+    inside[side] = count[side] > 0;
   }
 }
 
-std::size_t holeCellsTriangleCount(
-  const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind)
+std::size_t holeCellsTriangleCount(const HoleCells& cells)
 {
-  const int nc = static_cast<int>(C.size()) - 1, nr = static_cast<int>(R.size()) - 1;
   std::size_t n = 0;
-  for (int b = 0; b < nr; ++b)
+  for (const HoleCell& cell : cells.cells)
   {
-    for (int a = 0; a < nc; ++a)
+    if (cell.nodata)
     {
-      const std::size_t w = static_cast<std::size_t>(C[a + 1] - C[a]);
-      const std::size_t h = static_cast<std::size_t>(R[b + 1] - R[b]);
-      switch (cellAt(C, kind, a, b))
-      {
-        case CellKind::Plain:
-          n += 2;
-          break;
-        case CellKind::FullResolution:
-          n += 2 * w * h;
-          break;
-        case CellKind::Fanned:
-        {
-          bool fine[4];
-          fineCellSides(C, R, kind, a, b, fine);
-          n += fannedCellTriangleCount(static_cast<int>(w), static_cast<int>(h), fine);
-          break;
-        }
-      }
+      n += 2;
+      continue;
     }
+    int count[4];
+    sideVertexCounts(cells, cell, count);
+    const bool inside[4] = { count[South] > 0, count[East] > 0, count[North] > 0, count[West] > 0 };
+    n += fanTriangleCount(4 + static_cast<std::size_t>(count[South] + count[East] + count[North] + count[West]), inside);
   }
   return n;
 }
 
 std::size_t fannedCellTriangleCount(int w, int h, const bool fine[4])
 {
-  std::size_t n = coarseCorner(fine) >= 0 ? 2 : 4;
+  std::size_t vertices = 4;
   for (int side = South; side <= West; ++side)
   {
     if (fine[side])
     {
-      n += static_cast<std::size_t>(side == South || side == North ? w : h) - 1;
+      vertices += static_cast<std::size_t>(side == South || side == North ? w : h) - 1;
     }
   }
-  return n;
+  return fanTriangleCount(vertices, fine);
 }
 
 bool oneQuadFineSides(const Quadtree& qt, int block, bool fine[4])

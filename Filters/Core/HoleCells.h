@@ -1,6 +1,5 @@
 // A ring block with nodata, drawn at a level > 0 cell by cell over its whole extent: the
-// cells around the nodata at full resolution, the rest at the block's level, and every
-// sample along the block's border.
+// level's cells, split down towards the nodata, with every sample along the block's border.
 //
 // Without this a block holding any nodata stays at level 0, so a void of a few samples
 // costs its whole block at full resolution (on an SRTM3 tile, most of the coarsest
@@ -10,21 +9,26 @@
 // full resolution by both blocks that share it (Quadtree::sideAtFullResolution), whatever
 // their levels. The neighbours' strips join that full-resolution edge (Tessellate.h).
 //
-// A cell is the quad between two consecutive samples of the level in each direction
-// (edgeSamples: 2^m wide, a narrower last one). A cell side is fine when it lies on the
-// block's border or is shared with a FullResolution cell; cells are
-//   FullResolution: the cell holds nodata (its border included), or has a fine side and is
-//                   under 2 quads wide or tall (it has no sample inside for a fan);
-//   Fanned:         any other cell with a fine side: a fan over its perimeter, which has
-//                   every sample along its fine sides and only its corners elsewhere, from
-//                   a corner between two coarse sides (coarseCorner: two triangles fewer,
-//                   which on Rainier's coarsest selection saves 11 %), else from its
-//                   centre sample;
-//   Plain:          two triangles, as drawArea draws every cell of a block without nodata.
-// Two cells that share a side then have the same samples along it, and the border has every
-// sample as the neighbours' edges do: no crack or T-junction. Only FullResolution triangles
-// touch nodata, and those are the data's own holes (drawn, and dropped, as at full
-// resolution).
+// The cells start as the quads between the level's samples (edgeSamples: 2^m wide, a
+// narrower last one). A cell holding nodata (its border included) is split in four (in two
+// when it is one quad wide or tall) at the next level's samples, down to single quads:
+// a restricted quadtree whose smallest cells hold the nodata. Splitting only towards the
+// nodata instead of drawing a whole cell at full resolution cut Rainier's coarsest
+// selection from 154 373 to 128 717 triangles and N48W125's from 95 305 to 76 343
+// (benchmarks-core.md, session 12).
+//
+// A cell's vertices are its corners and every other cell's corner on its sides (and every
+// sample along the block's border), so two cells that share a side have the same samples
+// along it, and the border has every sample as the neighbours' edges do: no crack or
+// T-junction. A cell is drawn as
+//   a full-resolution quad: one quad with a nodata corner (drawn, and dropped, as at full
+//                           resolution: the data's own hole);
+//   two triangles:          no vertex but its corners (as drawArea draws a clean block);
+//   a fan over its vertices: from a corner between two sides with no vertex inside them
+//                           (coarseCorner: two triangles fewer), else from its centre
+//                           sample. A cell with neither (one quad wide or tall, vertices on
+//                           both long sides) is split as above, until every cell has one.
+// Only the full-resolution quads touch nodata.
 #pragma once
 
 #include "Quadtree.h"
@@ -36,43 +40,45 @@
 namespace gmm
 {
 
-enum class CellKind : uint8_t
+// One cell of a block with nodata: [i0, i1] x [j0, j1] in DEM samples.
+struct HoleCell
 {
-  Plain,
-  FullResolution,
-  Fanned
+  int i0, j0, i1, j1;
+  bool nodata; // a single quad with a nodata corner, drawn as at full resolution
 };
 
-// The cells of ring block `block` (with nodata) over its level's samples C (columns) and R
-// (rows): cell (a, b), a in [0, |C| - 2], b in [0, |R| - 2], spans [C[a], C[a + 1]] x
-// [R[b], R[b + 1]] and is kind[b * (|C| - 1) + a] (cellAt).
-void classifyHoleCells(const Quadtree& qt, int block, const std::vector<int>& C,
-  const std::vector<int>& R, std::vector<CellKind>& kind);
-
-// Triangles drawn from `kind`: 2 per Plain cell, 2 per quad of a FullResolution cell (fewer
-// are drawn where they touch nodata), one per perimeter sample of a Fanned cell.
-std::size_t holeCellsTriangleCount(
-  const std::vector<int>& C, const std::vector<int>& R, const std::vector<CellKind>& kind);
-
-// Cell (a, b) of classifyHoleCells' `kind` (the one place its layout is spelt out).
-inline CellKind cellAt(const std::vector<int>& C, const std::vector<CellKind>& kind, int a, int b)
+// The cells of one block at one level (buildHoleCells) and their vertices.
+struct HoleCells
 {
-  return kind[static_cast<std::size_t>(b) * (C.size() - 1) + a];
-}
+  int i0 = 0, j0 = 0;        // the block's first sample column and row
+  int width = 0, height = 0; // the block's size in quads
+  std::vector<HoleCell> cells;
+  // (width + 1) x (height + 1), row by row from (i0, j0): 1 where a sample is a cell's
+  // corner or lies on the block's border, i.e. a vertex of every cell whose side it is on.
+  std::vector<uint8_t> vertex;
+  std::vector<uint32_t> nodataBelow; // scratch: nodata counts over sample rectangles
 
-// Whether the `side` (Tessellate.h's Side) of cell (a, b) is fine: on the block's border
-// or shared with a FullResolution cell. A Fanned cell's perimeter has every sample along
-// its fine sides.
-bool fineCellSide(const std::vector<int>& C, const std::vector<int>& R,
-  const std::vector<CellKind>& kind, int a, int b, int side);
-// fineCellSide for each side of cell (a, b), in Side order.
-void fineCellSides(const std::vector<int>& C, const std::vector<int>& R,
-  const std::vector<CellKind>& kind, int a, int b, bool fine[4]);
+  bool isVertex(int i, int j) const
+  {
+    return vertex[static_cast<std::size_t>(j - j0) * (width + 1) + (i - i0)] != 0;
+  }
+};
 
-// The corner (0 south-west, 1 south-east, 2 north-east, 3 north-west) of a Fanned cell
-// whose two sides are both coarse, from which it is fanned (its perimeter less two
-// triangles); -1 when there is none (fine sides face each other, or three or four are
-// fine), and the fan is from the cell's centre sample.
+// The cells of ring block `block` (with nodata) at ring level `level` > 0. `out` is reused:
+// once its buffers have grown, building allocates nothing.
+void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out);
+
+// Whether each side of `cell` (Tessellate.h's Side order) has a vertex between its corners.
+void cellSidesWithVertices(const HoleCells& cells, const HoleCell& cell, bool inside[4]);
+
+// Triangles the cells draw (2 per full-resolution quad, fewer are drawn where they touch
+// nodata).
+std::size_t holeCellsTriangleCount(const HoleCells& cells);
+
+// The corner (0 south-west, 1 south-east, 2 north-east, 3 north-west) of a cell whose two
+// sides have no vertex inside them (`fine[s]`: side s has), from which it is fanned (its
+// vertices less two triangles); -1 when there is none (such sides face each other, or three
+// or four have vertices), and the fan is from the cell's centre sample.
 inline int coarseCorner(const bool fine[4])
 {
   // Corner k lies between sides k (South, East, North, West) and k - 1 (mod 4).
@@ -86,12 +92,17 @@ inline int coarseCorner(const bool fine[4])
   return -1;
 }
 
-// Triangles of a w x h quad drawn as a Fanned cell: one per perimeter sample (every sample
-// along the sides marked fine, Side order, the corners elsewhere), less two when it is
-// fanned from a coarse corner (coarseCorner).
+// Triangles of a fan over `vertices` perimeter points: two fewer from a coarse corner.
+inline std::size_t fanTriangleCount(std::size_t vertices, const bool fine[4])
+{
+  return coarseCorner(fine) >= 0 ? vertices - 2 : vertices;
+}
+
+// Triangles of a w x h quad drawn as a fan with every sample along the sides marked fine
+// (Side order) and only the corners elsewhere.
 std::size_t fannedCellTriangleCount(int w, int h, const bool fine[4]);
 
-// Whether `block`, at a one-quad level (Levels.h), is drawn as one Fanned cell instead of
+// Whether `block`, at a one-quad level (Levels.h), is drawn as one fanned quad instead of
 // two triangles, with `fine` its sides at full resolution: it has such a side
 // (Quadtree::sideAtFullResolution), whose samples its neighbour draws, and is at least 2
 // quads either way. (A block one quad wide lies in a DEM one quad wide: its long sides have

@@ -40,28 +40,18 @@ void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
   }
 }
 
-// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) as a fan over its perimeter,
-// which has every sample along the sides marked fine (in Side order) and only the corners
-// elsewhere: from a corner between two coarse sides (HoleCells.h, coarseCorner), else from
-// its centre sample.
+// A fan over the perimeter of the quad [i0, i1] x [j0, j1] (counter-clockwise from its
+// south-west corner, each corner once), `fine` saying which sides have points between their
+// corners: from a corner between two sides without (HoleCells.h, coarseCorner), else from
+// its centre sample (the quad is then at least 2 quads either way).
 template <typename Sink>
-void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
-  std::vector<GridPoint>& perimeter)
+void drawPerimeterFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
+  const std::vector<GridPoint>& perimeter)
 {
-  // Counter-clockwise from the south-west corner, each corner once.
-  perimeter.clear();
-  for (int i = i0; i < i1; i += fine[South] ? 1 : i1 - i0)
-    perimeter.push_back({ i, j0 });
-  for (int j = j0; j < j1; j += fine[East] ? 1 : j1 - j0)
-    perimeter.push_back({ i1, j });
-  for (int i = i1; i > i0; i -= fine[North] ? 1 : i1 - i0)
-    perimeter.push_back({ i, j1 });
-  for (int j = j1; j > j0; j -= fine[West] ? 1 : j1 - j0)
-    perimeter.push_back({ i0, j });
   const int corner = coarseCorner(fine);
   if (corner >= 0)
   {
-    // From that corner: every other perimeter sample lies on a side away from it.
+    // From that corner: every other perimeter point lies on a side away from it.
     const GridPoint apex = corner == 0 ? GridPoint{ i0, j0 } : corner == 1 ? GridPoint{ i1, j0 }
       : corner == 2 ? GridPoint{ i1, j1 } : GridPoint{ i0, j1 };
     std::size_t at = 0;
@@ -81,53 +71,67 @@ void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
   }
 }
 
-// A ring block with nodata, cell by cell over its whole extent (HoleCells.h): cells
-// holding nodata at full resolution, cells with a fine side (the block's border, or beside
-// a full-resolution cell) as fans over their perimeter (drawCellFan), the rest as
-// drawArea draws them.
+// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) as a fan over its perimeter,
+// which has every sample along the sides marked fine (in Side order) and only the corners
+// elsewhere (a one-quad block beside nodata, HoleCells.h).
 template <typename Sink>
-void drawAreaAroundHoles(Sink& sink, const std::vector<int>& C, const std::vector<int>& R,
-  const std::vector<CellKind>& kind, std::vector<GridPoint>& perimeter)
+void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
+  std::vector<GridPoint>& perimeter)
 {
-  const int nc = static_cast<int>(C.size()) - 1, nr = static_cast<int>(R.size()) - 1;
-  for (int b = 0; b < nr; ++b)
+  perimeter.clear();
+  for (int i = i0; i < i1; i += fine[South] ? 1 : i1 - i0)
+    perimeter.push_back({ i, j0 });
+  for (int j = j0; j < j1; j += fine[East] ? 1 : j1 - j0)
+    perimeter.push_back({ i1, j });
+  for (int i = i1; i > i0; i -= fine[North] ? 1 : i1 - i0)
+    perimeter.push_back({ i, j1 });
+  for (int j = j1; j > j0; j -= fine[West] ? 1 : j1 - j0)
+    perimeter.push_back({ i0, j });
+  drawPerimeterFan(sink, i0, j0, i1, j1, fine, perimeter);
+}
+
+// A ring block with nodata, cell by cell over its whole extent (HoleCells.h): quads with a
+// nodata corner as at full resolution, cells with no vertex but their corners as drawArea
+// draws them, the others as fans over their vertices (drawPerimeterFan).
+template <typename Sink>
+void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoint>& perimeter)
+{
+  for (const HoleCell& c : cells.cells)
   {
-    for (int a = 0; a < nc; ++a)
+    bool inside[4];
+    if (!c.nodata)
     {
-      const int i0 = C[a], i1 = C[a + 1], j0 = R[b], j1 = R[b + 1];
-      switch (cellAt(C, kind, a, b))
-      {
-        case CellKind::Plain:
-          sink.quad(i0, j0, i1, j1);
-          break;
-        case CellKind::FullResolution:
-          for (int j = j0; j < j1; ++j)
-            for (int i = i0; i < i1; ++i)
-              sink.quad(i, j, i + 1, j + 1);
-          break;
-        case CellKind::Fanned:
-        {
-          bool fine[4];
-          fineCellSides(C, R, kind, a, b, fine);
-          drawCellFan(sink, i0, j0, i1, j1, fine, perimeter);
-          break;
-        }
-      }
+      cellSidesWithVertices(cells, c, inside);
     }
+    if (c.nodata || !(inside[South] || inside[East] || inside[North] || inside[West]))
+    {
+      sink.quad(c.i0, c.j0, c.i1, c.j1);
+      continue;
+    }
+    // Counter-clockwise from the south-west corner, each corner once.
+    perimeter.clear();
+    for (int i = c.i0; i < c.i1; ++i)
+      if (i == c.i0 || cells.isVertex(i, c.j0))
+        perimeter.push_back({ i, c.j0 });
+    for (int j = c.j0; j < c.j1; ++j)
+      if (j == c.j0 || cells.isVertex(c.i1, j))
+        perimeter.push_back({ c.i1, j });
+    for (int i = c.i1; i > c.i0; --i)
+      if (i == c.i1 || cells.isVertex(i, c.j1))
+        perimeter.push_back({ i, c.j1 });
+    for (int j = c.j1; j > c.j0; --j)
+      if (j == c.j1 || cells.isVertex(c.i0, j))
+        perimeter.push_back({ c.i0, j });
+    drawPerimeterFan(sink, c.i0, c.j0, c.i1, c.j1, inside, perimeter);
   }
 }
 
-// The cells of a ring block at `level` over C x R (HoleCells.h); none (empty) for a block
-// without nodata, and at level 0, which draws every sample anyway (with its four edges at
-// full resolution: Quadtree::sideAtFullResolution).
-void holeCellsOf(const Quadtree& qt, int block, int level, const std::vector<int>& C,
-  const std::vector<int>& R, std::vector<CellKind>& cells)
+// Whether `block` at `level` is drawn as cells (HoleCells.h): a block with nodata at a
+// level above 0 (level 0 draws every sample anyway, with its four edges at full
+// resolution: Quadtree::sideAtFullResolution).
+bool drawnAsHoleCells(const Quadtree& qt, int block, int level)
 {
-  cells.clear();
-  if (level > 0 && qt.blockHasNodata[block])
-  {
-    classifyHoleCells(qt, block, C, R, cells);
-  }
+  return level > 0 && qt.blockHasNodata[block];
 }
 
 // Fan from `apex` over consecutive points run[first..last], which lie on the line opposite
@@ -319,13 +323,13 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   std::vector<int>& R = scratch.rows;
   edgeSamples(r.i0, r.i1, config.level, C);
   edgeSamples(r.j0, r.j1, config.level, R);
-  holeCellsOf(qt, block, config.level, C, R, scratch.cells);
-  if (!scratch.cells.empty())
+  if (drawnAsHoleCells(qt, block, config.level))
   {
     // Cells over the whole block, its border included: no side strips.
     if (part == BlockPart::Whole || part == BlockPart::Inner)
     {
-      drawAreaAroundHoles(sink, C, R, scratch.cells, scratch.inner);
+      buildHoleCells(qt, block, config.level, scratch.cells);
+      drawAreaAroundHoles(sink, scratch.cells, scratch.inner);
     }
     return;
   }

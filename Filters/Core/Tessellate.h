@@ -70,7 +70,7 @@ struct EmitScratch
 {
   std::vector<int> cols, rows, edge;
   std::vector<GridPoint> outer, inner;
-  std::vector<CellKind> cells;
+  HoleCells cells;
 };
 
 // Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a

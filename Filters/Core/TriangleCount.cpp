@@ -41,12 +41,9 @@ std::size_t blockTriangleCount(
     {
       return table->cellTriangles[static_cast<std::size_t>(block) * table->levels + config.level];
     }
-    std::vector<int> C, R;
-    std::vector<CellKind> kind;
-    edgeSamples(i0, i1, config.level, C);
-    edgeSamples(j0, j1, config.level, R);
-    classifyHoleCells(qt, block, C, R, kind);
-    return holeCellsTriangleCount(C, R, kind);
+    HoleCells cells;
+    buildHoleCells(qt, block, config.level, cells);
+    return holeCellsTriangleCount(cells);
   }
   std::size_t n = 2 * (nc - 3) * (nr - 3);
   for (int side = South; side <= West; ++side)

@@ -287,18 +287,25 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
   // block 0. By hand (HoleCells.h): block 0 is drawn cell by cell, its border at full
-  // resolution, and (16, 16) is a corner of the four cells around it at every level. A
-  // fanned cell has one triangle per perimeter sample, two fewer when fanned from a corner
-  // between two coarse sides (coarseCorner).
-  // - Level 2 (8 x 8 cells of 4 quads): those four at full resolution, 4 x 32 triangles
-  //   less the 6 that touch (16, 16): 122; the 8 cells beside them with one fine side,
-  //   from a corner, 4 + 3 - 2 each: 40; the 28 border cells over their border side(s)
-  //   from a corner: 24 x 5 + 4 x 8 = 152; the other 24 cells 2 each: 48. 362 triangles.
-  // - Level 1: 26 + 8 x 3 + 56 x 3 + 4 x 4 + 184 x 2 = 602; level 3 (cells of 8): 506 +
-  //   4 x 16 + 8 x 18 (border cells between a border side and a full-resolution cell,
-  //   fanned from their centre) = 714, more than level 2, so not allowed; level 4: all four
-  //   16-quad cells at full resolution; level 5: one quad over the void.
-  // So at any error block 0 takes level 2. Blocks 1 and 2 (east and north of it) take
+  // resolution. (16, 16) is a corner of the four cells around it at every level, and each
+  // of those is split towards it down to the quad that holds it. A cell is drawn as a fan
+  // over its vertices (its corners and every other cell's corner on its sides): one
+  // triangle per vertex, two fewer from a corner between two sides without vertices
+  // inside (coarseCorner); two triangles when it has only its corners.
+  // - Level 3 (4 x 4 cells of 8 quads). The cell south-west of the void, [8, 16]^2, splits
+  //   into three clean 4-quad cells ([8, 12]^2: 2 triangles; the two beside [12, 16]^2,
+  //   whose side has that cell's split point at 14: 3 each), [12, 16]^2 into three clean
+  //   2-quad cells (2, 3, 3) and [14, 16]^2 into three clean quads (2 each) and the quad
+  //   holding (16, 16): 22 triangles; the other three cells around the void are its
+  //   mirror images. Of the four quads with (16, 16) as a corner, 2 of their 8 triangles
+  //   do not touch it. The 4 corner cells: their two border sides, 4 + 7 + 7 - 2 = 16
+  //   each; the 8 other border cells: their border side and the split point 12 (or 20)
+  //   on the side facing the void's cells, which face each other, so from the centre:
+  //   4 + 7 + 1 = 12 each. 4 x 22 + 2 + 4 x 16 + 8 x 12 = 250.
+  // - Levels 4 and 5 split into the same cells, so they draw no fewer triangles: not
+  //   allowed. Level 2 draws 282 (the 28 border cells 152, the void's four cells 58, the 8
+  //   cells beside them 3 each, the other 24 cells 2 each) and level 1 602.
+  // So at any error block 0 takes level 3. Blocks 1 and 2 (east and north of it) take
   // their one-quad level as one fan over their side beside block 0 at full resolution:
   // 4 + 31 - 2 triangles each; block 3 one quad (the root cannot merge over nodata).
   // Without the cells block 0 would draw its 2 048 full-resolution triangles less 6.
@@ -306,11 +313,11 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
   const gmm::FrameStats& s = e.updateForError(1e9);
-  EXPECT_EQ(e.levels()[0], 2);
+  EXPECT_EQ(e.levels()[0], 3);
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 32 - 6) + 8 * 5 + 24 * 5 + 4 * 8 + 24 * 2 + 2 * (4 + 31 - 2) + 2);
+  EXPECT_EQ(s.triangles, (4u * 22 + 2 + 4 * 16 + 8 * 12) + 2 * (4 + 31 - 2) + 2);
   expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
@@ -318,24 +325,36 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (32, 16): on the side
   // blocks 0 and 1 share. Before the cells reached the border, a strip could not pass it
-  // and both blocks were drawn at full resolution. By hand (HoleCells.h, fans as in the
-  // test above), block 0 at level 2 (8 x 8 cells of 4 quads): the two cells east of column
-  // 28 that (32, 16) is a corner of at full resolution, 2 x 32 triangles less the 3 that
-  // touch it: 61; the 4 corner cells over two border sides, 4 + 3 + 3 - 2: 32; the other 22
-  // border cells over one border side, 4 + 3 - 2, but the two beside the full-resolution
-  // cells over one more: 20 x 5 + 2 x 8 = 116; the 2 inner cells west of those,
-  // 4 + 3 - 2: 10; the other 34 inner cells 2 each: 68. 287 triangles. Level 1 draws 587,
-  // level 3 411 and level 4 over 1 021 (more than level 2: not allowed), level 5 is one
-  // quad over the void. Block 1 is its mirror image: 287. Blocks 2 and 3 take their
+  // and both blocks were drawn at full resolution. By hand (HoleCells.h, cells and fans as
+  // in the test above), block 0 at level 4 (2 x 2 cells of 16 quads):
+  // - the two western cells: two border sides (15 vertices each inside) and, on the side
+  //   facing the eastern cells, their split point (8 or 24): 4 + 15 + 15 + 1 from the
+  //   centre, 35 each;
+  // - the south-eastern cell [16, 32] x [0, 16] splits towards (32, 16): [16, 24] x [0, 8]
+  //   over its border side from a corner, 4 + 7 - 2 = 9; [24, 32] x [0, 8] over two border
+  //   sides and the split point 28 above it, from the centre, 19; [16, 24] x [8, 16] with
+  //   the split point 12 on its east side, 3. [24, 32] x [8, 16] splits into
+  //   [24, 28] x [8, 12] (2), [28, 32] x [8, 12] (its border side's 3 vertices and 30
+  //   above it, from the corner: 6) and [24, 28] x [12, 16] (3); [28, 32] x [12, 16] into
+  //   [28, 30] x [12, 14] (2), [30, 32] x [12, 14] (4), [28, 30] x [14, 16] (3); and
+  //   [30, 32] x [14, 16] into three clean quads (2 each) and the quad holding (32, 16),
+  //   both of whose triangles touch it: 57;
+  // - the north-eastern cell is its mirror image: 57, and 1 triangle of its quad at the
+  //   void does not touch it.
+  // 185 triangles. Level 5 splits into the same cells (no fewer triangles: not allowed);
+  // level 3 draws 187 (its south-eastern corner cell is fanned from its centre over two
+  // border sides and the split point 28: 19) and level 2 over 200 (its 28 border cells
+  // alone 152, the other 36 at least 2 each). Block 1 is block 0's mirror image, and of its
+  // two quads at the void 1 triangle does not touch it: 185. Blocks 2 and 3 take their
   // one-quad level, fanned over the side they share with a block with nodata: 4 + 31 - 2.
   const gmm::Heightfield hf = planeWithOneVoid(2.0f, -3.0f, 32, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
   const gmm::FrameStats& s = e.updateForError(1e9);
-  EXPECT_EQ(e.levels()[0], 2);
-  EXPECT_EQ(e.levels()[1], 2);
+  EXPECT_EQ(e.levels()[0], 4);
+  EXPECT_EQ(e.levels()[1], 4);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, 2u * (61 + 32 + 116 + 10 + 68) + 2 * (4 + 31 - 2));
+  EXPECT_EQ(s.triangles, 2u * (2 * 35 + 57 + 57 + 1) + 2 * (4 + 31 - 2));
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }
