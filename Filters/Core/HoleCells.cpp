@@ -98,15 +98,26 @@ void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out)
   out.j0 = qt.rowStart[r];
   out.width = qt.colStart[c + 1] - out.i0;
   out.height = qt.rowStart[r + 1] - out.j0;
+  out.cells.clear();
+  if (qt.everySampleNodata(block))
+  {
+    // Nothing of it is drawn at any level above 0: no cells (and no triangles to count).
+    markVertices(out);
+    return;
+  }
   // Summed nodata counts: nodataBelow[y][x] counts the nodata samples left of x and below y.
+  // The block's nodata bits are read in their order (Quadtree::nodataBits: row by row,
+  // borders included), which costs the table build far less than a lookup per sample.
   const std::size_t stride = static_cast<std::size_t>(out.width) + 2;
   out.nodataBelow.assign(stride * (static_cast<std::size_t>(out.height) + 2), 0);
+  const uint64_t* bits = qt.nodataBits.data() + qt.nodataBitsAt[block];
+  uint64_t bit = 0;
   for (int y = 0; y <= out.height; ++y)
   {
     uint32_t row = 0;
-    for (int x = 0; x <= out.width; ++x)
+    for (int x = 0; x <= out.width; ++x, ++bit)
     {
-      row += qt.sampleIsNodata(block, out.i0 + x, out.j0 + y) ? 1u : 0u;
+      row += static_cast<uint32_t>((bits[bit / 64] >> (bit % 64)) & 1u);
       out.nodataBelow[(y + 1) * stride + x + 1] = out.nodataBelow[y * stride + x + 1] + row;
     }
   }
@@ -115,7 +126,6 @@ void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out)
   std::vector<int> C, R;
   edgeSamples(out.i0, out.i0 + out.width, level, C);
   edgeSamples(out.j0, out.j0 + out.height, level, R);
-  out.cells.clear();
   std::vector<HoleCell> pending;
   for (std::size_t b = 0; b + 1 < R.size(); ++b)
   {

@@ -28,7 +28,8 @@
 //                           (coarseCorner: two triangles fewer), else from its centre
 //                           sample. A cell with neither (one quad wide or tall, vertices on
 //                           both long sides) is split as above, until every cell has one.
-// Only the full-resolution quads touch nodata.
+// Only the full-resolution quads touch nodata. A block with no valid sample has no cells:
+// it draws nothing at any level above 0.
 #pragma once
 
 #include "Quadtree.h"
