@@ -112,7 +112,15 @@ private:
         order[count++] = { e, n.firstChild + k };
       }
     }
-    std::sort(order, order + count);
+    // At most four: an insertion sort (std::sort here made GCC 12's -Warray-bounds see
+    // its 16-element insertion pass run past the array).
+    for (int k = 1; k < count; ++k)
+    {
+      for (int m = k; m > 0 && order[m] < order[m - 1]; --m)
+      {
+        std::swap(order[m], order[m - 1]);
+      }
+    }
     for (int k = 0; k < count; ++k)
     {
       if (best_.hit && order[k].first > best_.t)
