@@ -176,11 +176,7 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
       // around a void can outnumber a finer level's: a void on a corner of 16-quad cells
       // takes all four at full resolution). A level with no fewer triangles than a finer
       // allowed one, whose error is no larger, is never worth drawing: not allowed.
-      const std::size_t count = blockTriangleCount(qt, block, cfg);
-      if (m > 0)
-      {
-        t.cellTriangles[static_cast<std::size_t>(block) * t.levels + m] = static_cast<uint32_t>(count);
-      }
+      const std::size_t count = blockTriangleCount(qt, block, cfg, &t); // cellTriangles above 0
       if (count >= fewest)
       {
         own[m] = kInf;
@@ -218,7 +214,7 @@ float mergedNodeError(const Heightfield& hf, const Quadtree& qt, int node, Scrat
 
 } // namespace
 
-void fillCellTriangles(const Quadtree& qt, ErrorTable& table)
+void fillCellTriangles(const Quadtree& qt, ErrorTable& table, int threads)
 {
   table.cellTriangles.clear();
   if (qt.nodataBits.empty())
@@ -226,20 +222,23 @@ void fillCellTriangles(const Quadtree& qt, ErrorTable& table)
     return;
   }
   table.cellTriangles.assign(static_cast<std::size_t>(qt.blockCount()) * table.levels, 0);
-  for (int b = 0; b < qt.blockCount(); ++b)
-  {
-    const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-    for (int m = 1; qt.blockHasNodata[b] && m < table.levels; ++m)
-    {
-      if (blockShape(w, h, m) == BlockShape::Ring)
+  parallelChunks(static_cast<std::size_t>(qt.blockCount()), 256, threads,
+    [&](std::size_t begin, std::size_t end) {
+      HoleCells cells;
+      for (int b = static_cast<int>(begin); b < static_cast<int>(end); ++b)
       {
-        BlockConfig cfg;
-        cfg.level = m;
-        table.cellTriangles[static_cast<std::size_t>(b) * table.levels + m] =
-          static_cast<uint32_t>(blockTriangleCount(qt, b, cfg));
+        const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+        for (int m = 1; qt.blockHasNodata[b] && m < table.levels; ++m)
+        {
+          if (blockShape(w, h, m) == BlockShape::Ring)
+          {
+            buildHoleCells(qt, b, m, cells);
+            table.cellTriangles[static_cast<std::size_t>(b) * table.levels + m] =
+              static_cast<uint32_t>(holeCellsTriangleCount(cells));
+          }
+        }
       }
-    }
-  }
+    });
 }
 
 bool mergedErrorIsExact(const Quadtree& qt, int node)
@@ -272,10 +271,8 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
 
   const std::size_t nodes = qt.nodes.size();
   resizeOnHugePages(t.mergedError, nodes, kInf);
-  if (!qt.nodataBits.empty())
-  {
-    t.cellTriangles.assign(blocks * t.levels, 0); // filled by fillBlock
-  }
+  // Before the blocks: their levels' triangle counts decide which levels are allowed.
+  fillCellTriangles(qt, t, threads);
   // Work items: every block, then every quadtree node (its merged fan).
   const std::size_t items = blocks + nodes;
 

@@ -78,9 +78,11 @@ struct ErrorTable
 // kExactMergedQuads) rather than a bound.
 bool mergedErrorIsExact(const Quadtree& qt, int node);
 
-// Fills table.cellTriangles for the quadtree's blocks with nodata (table.levels set);
-// buildErrorTable does it itself, a table read from a cache file needs it.
-void fillCellTriangles(const Quadtree& qt, ErrorTable& table);
+// Fills table.cellTriangles for the quadtree's blocks with nodata (table.levels set), on up
+// to `threads` threads (0 = the hardware's): the one writer of those counts.
+// buildErrorTable calls it before the errors (the counts decide which levels are allowed);
+// a table read from a cache file needs it too.
+void fillCellTriangles(const Quadtree& qt, ErrorTable& table, int threads = 0);
 
 // Builds the table with up to `threads` worker threads (0 = hardware concurrency).
 // `progress`, when given, is called with the fraction of blocks done, from the calling
