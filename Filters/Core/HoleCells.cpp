@@ -154,31 +154,7 @@ void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out)
       }
     }
   }
-  // A clean cell one quad wide or tall whose vertices leave it no corner to fan from has no
-  // centre sample either: split it too, which adds vertices to its neighbours, until none
-  // is left (single quads always have a corner).
-  for (bool split = true; split;)
-  {
-    markVertices(out);
-    split = false;
-    pending.clear();
-    for (const HoleCell& cell : out.cells)
-    {
-      bool inside[4];
-      if (!cell.nodata && (cell.i1 - cell.i0 < 2 || cell.j1 - cell.j0 < 2))
-      {
-        cellSidesWithVertices(out, cell, inside);
-        if (coarseCorner(inside) < 0)
-        {
-          splitCell(cell, pending);
-          split = true;
-          continue;
-        }
-      }
-      pending.push_back(cell);
-    }
-    out.cells.swap(pending);
-  }
+  markVertices(out);
 }
 
 void cellSidesWithVertices(const HoleCells& cells, const HoleCell& cell, bool inside[4])
@@ -203,8 +179,7 @@ std::size_t holeCellsTriangleCount(const HoleCells& cells)
     }
     int count[4];
     sideVertexCounts(cells, cell, count);
-    const bool inside[4] = { count[South] > 0, count[East] > 0, count[North] > 0, count[West] > 0 };
-    n += fanTriangleCount(4 + static_cast<std::size_t>(count[South] + count[East] + count[North] + count[West]), inside);
+    n += cellTriangleCount(4 + static_cast<std::size_t>(count[South] + count[East] + count[North] + count[West]));
   }
   return n;
 }
@@ -219,7 +194,7 @@ std::size_t fannedCellTriangleCount(int w, int h, const bool fine[4])
       vertices += static_cast<std::size_t>(side == South || side == North ? w : h) - 1;
     }
   }
-  return fanTriangleCount(vertices, fine);
+  return cellTriangleCount(vertices);
 }
 
 bool oneQuadFineSides(const Quadtree& qt, int block, bool fine[4])

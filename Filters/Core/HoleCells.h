@@ -24,10 +24,14 @@
 //   a full-resolution quad: one quad with a nodata corner (drawn, and dropped, as at full
 //                           resolution: the data's own hole);
 //   two triangles:          no vertex but its corners (as drawArea draws a clean block);
-//   a fan over its vertices: from a corner between two sides with no vertex inside them
-//                           (coarseCorner: two triangles fewer), else from its centre
-//                           sample. A cell with neither (one quad wide or tall, vertices on
-//                           both long sides) is split as above, until every cell has one.
+//   two fewer triangles than vertices otherwise: a fan from a corner between two sides with
+//                           no vertex inside them (coarseCorner), else (two opposite sides
+//                           have vertices) a strip that zigzags between those two sides,
+//                           fanned at its ends where the sides between have vertices
+//                           (Tessellate.cpp, drawBetweenSides). Every triangle has its
+//                           vertices on two lines, so none is degenerate, and no cell needs
+//                           a sample inside it. (Fans from the centre sample, before, drew
+//                           two more triangles: 2 502 cells of Rainier's coarsest selection.)
 // Only the full-resolution quads touch nodata. A block with no valid sample has no cells:
 // it draws nothing at any level above 0.
 #pragma once
@@ -77,9 +81,9 @@ void cellSidesWithVertices(const HoleCells& cells, const HoleCell& cell, bool in
 std::size_t holeCellsTriangleCount(const HoleCells& cells);
 
 // The corner (0 south-west, 1 south-east, 2 north-east, 3 north-west) of a cell whose two
-// sides have no vertex inside them (`fine[s]`: side s has), from which it is fanned (its
-// vertices less two triangles); -1 when there is none (such sides face each other, or three
-// or four have vertices), and the fan is from the cell's centre sample.
+// sides have no vertex inside them (`fine[s]`: side s has), from which it is fanned; -1
+// when there is none (such sides face each other, or three or four have vertices), and it
+// is drawn between two opposite sides.
 inline int coarseCorner(const bool fine[4])
 {
   // Corner k lies between sides k (South, East, North, West) and k - 1 (mod 4).
@@ -93,21 +97,22 @@ inline int coarseCorner(const bool fine[4])
   return -1;
 }
 
-// Triangles of a fan over `vertices` perimeter points: two fewer from a coarse corner.
-inline std::size_t fanTriangleCount(std::size_t vertices, const bool fine[4])
+// Triangles of a cell (or a one-quad block) over `vertices` perimeter points, however it
+// is drawn: two fewer.
+inline std::size_t cellTriangleCount(std::size_t vertices)
 {
-  return coarseCorner(fine) >= 0 ? vertices - 2 : vertices;
+  return vertices - 2;
 }
 
-// Triangles of a w x h quad drawn as a fan with every sample along the sides marked fine
-// (Side order) and only the corners elsewhere.
+// Triangles of a w x h quad drawn over every sample along the sides marked fine (Side
+// order) and only the corners elsewhere.
 std::size_t fannedCellTriangleCount(int w, int h, const bool fine[4]);
 
-// Whether `block`, at a one-quad level (Levels.h), is drawn as one fanned quad instead of
-// two triangles, with `fine` its sides at full resolution: it has such a side
-// (Quadtree::sideAtFullResolution), whose samples its neighbour draws, and is at least 2
-// quads either way. (A block one quad wide lies in a DEM one quad wide: its long sides have
-// no neighbour and its short sides no sample between their corners.)
+// Whether `block`, at a one-quad level (Levels.h), is drawn as one cell over every sample of
+// its sides at full resolution instead of two triangles, with `fine` those sides: it has
+// such a side (Quadtree::sideAtFullResolution), whose samples its neighbour draws, and is
+// at least 2 quads either way. (A block one quad wide lies in a DEM one quad wide: its long
+// sides have no neighbour and its short sides no sample between their corners.)
 bool oneQuadFineSides(const Quadtree& qt, int block, bool fine[4]);
 
 } // namespace gmm

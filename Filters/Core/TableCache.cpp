@@ -34,8 +34,9 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // cells over their whole extent and every side beside nodata is at full resolution
 // (Quadtree::sideAtFullResolution), which changes their errors and their neighbours'; 8:
 // fanned cells from a corner between two coarse sides (HoleCells.h, coarseCorner); 9: cells
-// holding nodata split towards it instead of drawn at full resolution (HoleCells.h).
-constexpr uint32_t kFormatVersion = 9;
+// holding nodata split towards it instead of drawn at full resolution (HoleCells.h); 10:
+// cells with vertices on opposite sides drawn between them instead of from their centre.
+constexpr uint32_t kFormatVersion = 10;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

@@ -3,6 +3,8 @@
 #include "Levels.h"
 #include "TriangleSinks.h"
 
+#include <algorithm>
+
 namespace gmm
 {
 
@@ -40,13 +42,66 @@ void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
   }
 }
 
-// A fan over the perimeter of the quad [i0, i1] x [j0, j1] (counter-clockwise from its
-// south-west corner, each corner once), `fine` saying which sides have points between their
-// corners: from a corner between two sides without (HoleCells.h, coarseCorner), else from
-// its centre sample (the quad is then at least 2 quads either way).
+// Emits triangle (a, b, c) counter-clockwise in (i, j), whichever order it is given in.
 template <typename Sink>
-void drawPerimeterFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
-  const std::vector<GridPoint>& perimeter)
+void triangleCCW(Sink& sink, GridPoint a, GridPoint b, GridPoint c)
+{
+  const long long cross = static_cast<long long>(b.i - a.i) * (c.j - a.j) -
+    static_cast<long long>(b.j - a.j) * (c.i - a.i);
+  if (cross > 0)
+    sink.triangle(a, b, c);
+  else
+    sink.triangle(a, c, b);
+}
+
+// The quad between two opposite sides that both have points between their corners:
+// `lower` and `upper` run along them in the same direction, `first` is the side that joins
+// lower[0] to upper[0] and `last` the one that joins their last points (each from the
+// lower side's corner to the upper side's, corners included). A side between them with
+// points inside is fanned from the lower (first) or upper (last) side's nearest inner
+// point; the rest is a strip that zigzags between the two sides. Every triangle has two
+// points on one line and one on another, so none is degenerate, and there are two fewer
+// than points (a fan from the centre would draw two more).
+template <typename Sink, typename Along>
+void drawBetweenSides(Sink& sink, const std::vector<GridPoint>& lower,
+  const std::vector<GridPoint>& upper, const std::vector<GridPoint>& first,
+  const std::vector<GridPoint>& last, Along along)
+{
+  std::size_t a = 0, b = 0, aEnd = lower.size() - 1, bEnd = upper.size() - 1;
+  if (first.size() > 2)
+  {
+    for (std::size_t k = 0; k + 1 < first.size(); ++k)
+      triangleCCW(sink, lower[1], first[k], first[k + 1]);
+    a = 1;
+  }
+  if (last.size() > 2)
+  {
+    for (std::size_t k = 0; k + 1 < last.size(); ++k)
+      triangleCCW(sink, upper[bEnd - 1], last[k], last[k + 1]);
+    --bEnd;
+  }
+  while (a < aEnd || b < bEnd)
+  {
+    if (b == bEnd || (a < aEnd && along(lower[a + 1]) <= along(upper[b + 1])))
+    {
+      triangleCCW(sink, lower[a], lower[a + 1], upper[b]);
+      ++a;
+    }
+    else
+    {
+      triangleCCW(sink, lower[a], upper[b + 1], upper[b]);
+      ++b;
+    }
+  }
+}
+
+// The quad [i0, i1] x [j0, j1] over its perimeter (counter-clockwise from its south-west
+// corner, each corner once), `fine` saying which sides have points between their corners,
+// in two fewer triangles than points: a fan from a corner between two sides without
+// (HoleCells.h, coarseCorner), else (two opposite sides have points) drawBetweenSides.
+template <typename Sink>
+void drawCellPerimeter(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
+  const std::vector<GridPoint>& perimeter, EmitSides& sides)
 {
   const int corner = coarseCorner(fine);
   if (corner >= 0)
@@ -64,19 +119,44 @@ void drawPerimeterFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fin
     }
     return;
   }
-  const GridPoint centre{ i0 + (i1 - i0) / 2, j0 + (j1 - j0) / 2 };
-  for (std::size_t k = 0; k < perimeter.size(); ++k)
+  // Each side's points, in increasing i (South, North) or j (West, East), corners included.
+  for (auto& side : sides.points)
+    side.clear();
+  for (const GridPoint& p : perimeter)
   {
-    sink.triangle(centre, perimeter[k], perimeter[(k + 1) % perimeter.size()]);
+    if (p.j == j0)
+      sides.points[South].push_back(p);
+    if (p.j == j1)
+      sides.points[North].push_back(p);
+    if (p.i == i0)
+      sides.points[West].push_back(p);
+    if (p.i == i1)
+      sides.points[East].push_back(p);
+  }
+  auto byI = [](GridPoint p, GridPoint q) { return p.i < q.i; };
+  auto byJ = [](GridPoint p, GridPoint q) { return p.j < q.j; };
+  std::sort(sides.points[South].begin(), sides.points[South].end(), byI);
+  std::sort(sides.points[North].begin(), sides.points[North].end(), byI);
+  std::sort(sides.points[West].begin(), sides.points[West].end(), byJ);
+  std::sort(sides.points[East].begin(), sides.points[East].end(), byJ);
+  if (fine[South] && fine[North])
+  {
+    drawBetweenSides(sink, sides.points[South], sides.points[North], sides.points[West],
+      sides.points[East], [](GridPoint p) { return p.i; });
+  }
+  else
+  {
+    drawBetweenSides(sink, sides.points[West], sides.points[East], sides.points[South],
+      sides.points[North], [](GridPoint p) { return p.j; });
   }
 }
 
-// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) as a fan over its perimeter,
-// which has every sample along the sides marked fine (in Side order) and only the corners
-// elsewhere (a one-quad block beside nodata, HoleCells.h).
+// The quad [i0, i1] x [j0, j1] (at least 2 quads either way) over its perimeter, which has
+// every sample along the sides marked fine (in Side order) and only the corners elsewhere
+// (a one-quad block beside nodata, HoleCells.h).
 template <typename Sink>
 void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
-  std::vector<GridPoint>& perimeter)
+  std::vector<GridPoint>& perimeter, EmitSides& sides)
 {
   perimeter.clear();
   for (int i = i0; i < i1; i += fine[South] ? 1 : i1 - i0)
@@ -87,14 +167,15 @@ void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
     perimeter.push_back({ i, j1 });
   for (int j = j1; j > j0; j -= fine[West] ? 1 : j1 - j0)
     perimeter.push_back({ i0, j });
-  drawPerimeterFan(sink, i0, j0, i1, j1, fine, perimeter);
+  drawCellPerimeter(sink, i0, j0, i1, j1, fine, perimeter, sides);
 }
 
 // A ring block with nodata, cell by cell over its whole extent (HoleCells.h): quads with a
 // nodata corner as at full resolution, cells with no vertex but their corners as drawArea
-// draws them, the others as fans over their vertices (drawPerimeterFan).
+// draws them, the others over their vertices (drawCellPerimeter).
 template <typename Sink>
-void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoint>& perimeter)
+void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoint>& perimeter,
+  EmitSides& sides)
 {
   for (const HoleCell& c : cells.cells)
   {
@@ -122,7 +203,7 @@ void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoi
     for (int j = c.j1; j > c.j0; --j)
       if (j == c.j1 || cells.isVertex(c.i0, j))
         perimeter.push_back({ c.i0, j });
-    drawPerimeterFan(sink, c.i0, c.j0, c.i1, c.j1, inside, perimeter);
+    drawCellPerimeter(sink, c.i0, c.j0, c.i1, c.j1, inside, perimeter, sides);
   }
 }
 
@@ -293,7 +374,7 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
       if (oneQuadFineSides(qt, block, fine))
       {
         // A side at full resolution: the quad as one fanned cell (HoleCells.h).
-        drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner);
+        drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner, scratch.sides);
         return;
       }
       if (oneQuadAntiDiagonal(qt, block))
@@ -329,7 +410,7 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     if (part == BlockPart::Whole || part == BlockPart::Inner)
     {
       buildHoleCells(qt, block, config.level, scratch.cells);
-      drawAreaAroundHoles(sink, scratch.cells, scratch.inner);
+      drawAreaAroundHoles(sink, scratch.cells, scratch.inner, scratch.sides);
     }
     return;
   }

@@ -64,6 +64,12 @@ struct GridTriangle
   GridPoint v[3];
 };
 
+// The points along each side of a cell (Side order), for drawing it between two sides.
+struct EmitSides
+{
+  std::array<std::vector<GridPoint>, 4> points;
+};
+
 // Buffers emitBlock needs; a caller that emits many parts (the error table) keeps one so
 // that emitting allocates nothing once they have grown.
 struct EmitScratch
@@ -71,6 +77,7 @@ struct EmitScratch
   std::vector<int> cols, rows, edge;
   std::vector<GridPoint> outer, inner;
   HoleCells cells;
+  EmitSides sides;
 };
 
 // Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a

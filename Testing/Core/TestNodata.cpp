@@ -288,10 +288,10 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
   // block 0. By hand (HoleCells.h): block 0 is drawn cell by cell, its border at full
   // resolution. (16, 16) is a corner of the four cells around it at every level, and each
-  // of those is split towards it down to the quad that holds it. A cell is drawn as a fan
-  // over its vertices (its corners and every other cell's corner on its sides): one
-  // triangle per vertex, two fewer from a corner between two sides without vertices
-  // inside (coarseCorner); two triangles when it has only its corners.
+  // of those is split towards it down to the quad that holds it. A cell is drawn over its
+  // vertices (its corners and every other cell's corner on its sides) in two triangles
+  // fewer than it has vertices: from a corner between two sides without vertices inside
+  // (coarseCorner), else between two opposite sides with vertices.
   // - Level 3 (4 x 4 cells of 8 quads). The cell south-west of the void, [8, 16]^2, splits
   //   into three clean 4-quad cells ([8, 12]^2: 2 triangles; the two beside [12, 16]^2,
   //   whose side has that cell's split point at 14: 3 each), [12, 16]^2 into three clean
@@ -300,8 +300,8 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   //   mirror images. Of the four quads with (16, 16) as a corner, 2 of their 8 triangles
   //   do not touch it. The 4 corner cells: their two border sides, 4 + 7 + 7 - 2 = 16
   //   each; the 8 other border cells: their border side and the split point 12 (or 20)
-  //   on the side facing the void's cells, which face each other, so from the centre:
-  //   4 + 7 + 1 = 12 each. 4 x 22 + 2 + 4 x 16 + 8 x 12 = 250.
+  //   on the side facing the void's cells: 4 + 7 + 1 - 2 = 10 each (a fan from the centre
+  //   would draw 12). 4 x 22 + 2 + 4 x 16 + 8 x 10 = 234.
   // - Levels 4 and 5 split into the same cells, so they draw no fewer triangles: not
   //   allowed. Level 2 draws 282 (the 28 border cells 152, the void's four cells 58, the 8
   //   cells beside them 3 each, the other 24 cells 2 each) and level 1 602.
@@ -317,7 +317,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 22 + 2 + 4 * 16 + 8 * 12) + 2 * (4 + 31 - 2) + 2);
+  EXPECT_EQ(s.triangles, (4u * 22 + 2 + 4 * 16 + 8 * 10) + 2 * (4 + 31 - 2) + 2);
   expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
@@ -328,24 +328,23 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   // and both blocks were drawn at full resolution. By hand (HoleCells.h, cells and fans as
   // in the test above), block 0 at level 4 (2 x 2 cells of 16 quads):
   // - the two western cells: two border sides (15 vertices each inside) and, on the side
-  //   facing the eastern cells, their split point (8 or 24): 4 + 15 + 15 + 1 from the
-  //   centre, 35 each;
+  //   facing the eastern cells, their split point (8 or 24): 4 + 15 + 15 + 1 - 2 = 33 each;
   // - the south-eastern cell [16, 32] x [0, 16] splits towards (32, 16): [16, 24] x [0, 8]
   //   over its border side from a corner, 4 + 7 - 2 = 9; [24, 32] x [0, 8] over two border
-  //   sides and the split point 28 above it, from the centre, 19; [16, 24] x [8, 16] with
+  //   sides and the split point 28 above it, 4 + 7 + 7 + 1 - 2 = 17; [16, 24] x [8, 16] with
   //   the split point 12 on its east side, 3. [24, 32] x [8, 16] splits into
   //   [24, 28] x [8, 12] (2), [28, 32] x [8, 12] (its border side's 3 vertices and 30
   //   above it, from the corner: 6) and [24, 28] x [12, 16] (3); [28, 32] x [12, 16] into
   //   [28, 30] x [12, 14] (2), [30, 32] x [12, 14] (4), [28, 30] x [14, 16] (3); and
   //   [30, 32] x [14, 16] into three clean quads (2 each) and the quad holding (32, 16),
-  //   both of whose triangles touch it: 57;
-  // - the north-eastern cell is its mirror image: 57, and 1 triangle of its quad at the
+  //   both of whose triangles touch it: 55;
+  // - the north-eastern cell is its mirror image: 55, and 1 triangle of its quad at the
   //   void does not touch it.
-  // 185 triangles. Level 5 splits into the same cells (no fewer triangles: not allowed);
-  // level 3 draws 187 (its south-eastern corner cell is fanned from its centre over two
-  // border sides and the split point 28: 19) and level 2 over 200 (its 28 border cells
-  // alone 152, the other 36 at least 2 each). Block 1 is block 0's mirror image, and of its
-  // two quads at the void 1 triangle does not touch it: 185. Blocks 2 and 3 take their
+  // 177 triangles. Level 5 splits into the same cells (no fewer triangles: not allowed);
+  // level 3 draws 183 (its eastern corner cells have two border sides and the split point
+  // 28 on their inner side: 17 each) and level 2 over 200 (its 28 border cells alone 152, the other 36
+  // at least 2 each). Block 1 is block 0's mirror image, and of its two quads at the void 1
+  // triangle does not touch it: 177. Blocks 2 and 3 take their
   // one-quad level, fanned over the side they share with a block with nodata: 4 + 31 - 2.
   const gmm::Heightfield hf = planeWithOneVoid(2.0f, -3.0f, 32, 16);
   gmm::Engine e;
@@ -355,6 +354,6 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   EXPECT_EQ(e.levels()[1], 4);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, 2u * (2 * 35 + 57 + 57 + 1) + 2 * (4 + 31 - 2));
+  EXPECT_EQ(s.triangles, 2u * (2 * 33 + 55 + 55 + 1) + 2 * (4 + 31 - 2));
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }
