@@ -91,6 +91,7 @@ bool Engine::selectHierarchicallyWithinBudget(
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
   const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
   const BoxProjector projector(view, toWorld, metric_);
+  const FactorMemo memo(nodeScratch_, &projector); // every trial below is of this view
   auto select = [&](double x) {
     selectHierarchically(&frustum, &projector, x);
     return hierarchicalTriangles();

@@ -51,7 +51,7 @@ public:
     const float e = table_.mergedError[index];
     if (!ns_.split[index] && e < std::numeric_limits<float>::infinity())
     {
-      const double f = factorOf(n.box);
+      const double f = memoised(n.box, index, ns_.nodeFactor, ns_.nodeStamp);
       const double budget = errorBudget(tau_, f);
       // Merging on geomorphing's path: only once the node's blocks have reached their top
       // level (rampNodeTopBudget), so that the merge does not skip levels.
@@ -68,6 +68,21 @@ public:
   }
 
   double factorOf(const Box& box) const { return projector_ ? projector_->factor(box) : 1.0; }
+
+  // factorOf(box) for entry k of a memo (NodeScratch, FactorMemo).
+  double memoised(const Box& box, int k, std::vector<double>& value, std::vector<uint32_t>& stamp)
+  {
+    if (!projector_ || ns_.memoView != projector_)
+    {
+      return factorOf(box);
+    }
+    if (stamp[k] != ns_.memoStamp)
+    {
+      value[k] = projector_->factor(box);
+      stamp[k] = ns_.memoStamp;
+    }
+    return value[k];
+  }
 
   void merge(int index, double f)
   {
@@ -155,6 +170,13 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   }
   ns.touched.clear();
   ns.newBlocks.clear();
+  if (ns.memoView)
+  {
+    ns.nodeFactor.resize(qt.nodes.size());
+    ns.nodeStamp.resize(qt.nodes.size(), 0);
+    ns.blockFactor.resize(blocks);
+    ns.blockStamp.resize(blocks, 0);
+  }
   if (qt.nodes.empty())
   {
     return;
@@ -165,7 +187,7 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   {
     for (int b : ns.newBlocks)
     {
-      out.factor[b] = walk.factorOf(qt.blockBox[b]);
+      out.factor[b] = walk.memoised(qt.blockBox[b], b, ns.blockFactor, ns.blockStamp);
       scratch.budget[b] = errorBudget(tau, out.factor[b]);
       out.levels[b] = static_cast<int8_t>(leafLevel(qt, table, b, scratch.budget[b], ramp));
     }
