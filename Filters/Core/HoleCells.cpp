@@ -123,10 +123,12 @@ void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out)
   }
   // The level's cells, each split down towards its nodata (depth first, so that a cell's
   // pieces stay together in drawing order).
-  std::vector<int> C, R;
+  std::vector<int>& C = out.cols;
+  std::vector<int>& R = out.rows;
   edgeSamples(out.i0, out.i0 + out.width, level, C);
   edgeSamples(out.j0, out.j0 + out.height, level, R);
-  std::vector<HoleCell> pending;
+  std::vector<HoleCell>& pending = out.pending;
+  pending.clear();
   for (std::size_t b = 0; b + 1 < R.size(); ++b)
   {
     for (std::size_t a = 0; a + 1 < C.size(); ++a)

@@ -61,7 +61,10 @@ struct HoleCells
   // (width + 1) x (height + 1), row by row from (i0, j0): 1 where a sample is a cell's
   // corner or lies on the block's border, i.e. a vertex of every cell whose side it is on.
   std::vector<uint8_t> vertex;
-  std::vector<uint32_t> nodataBelow; // scratch: nodata counts over sample rectangles
+  // Scratch: nodata counts over sample rectangles, the level's samples, cells to split.
+  std::vector<uint32_t> nodataBelow;
+  std::vector<int> cols, rows;
+  std::vector<HoleCell> pending;
 
   bool isVertex(int i, int j) const
   {
