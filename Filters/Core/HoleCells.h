@@ -14,8 +14,8 @@
 // when it is one quad wide or tall) at the next level's samples, down to single quads:
 // a restricted quadtree whose smallest cells hold the nodata. Splitting only towards the
 // nodata instead of drawing a whole cell at full resolution cut Rainier's coarsest
-// selection from 154 373 to 128 717 triangles and N48W125's from 95 305 to 76 343
-// (benchmarks-core.md, session 12).
+// selection from 154 373 to 128 717 triangles and N48W125's from 95 305 to 76 343, and
+// the drawing below to 122 937 and 74 687 (benchmarks-core.md, session 12).
 //
 // A cell's vertices are its corners and every other cell's corner on its sides (and every
 // sample along the block's border), so two cells that share a side have the same samples
@@ -28,7 +28,7 @@
 //                           no vertex inside them (coarseCorner), else (two opposite sides
 //                           have vertices) a strip that zigzags between those two sides,
 //                           fanned at its ends where the sides between have vertices
-//                           (Tessellate.cpp, drawBetweenSides). Every triangle has its
+//                           (CellDrawing.h, drawBetweenSides). Every triangle has its
 //                           vertices on two lines, so none is degenerate, and no cell needs
 //                           a sample inside it. (Fans from the centre sample, before, drew
 //                           two more triangles: 2 502 cells of Rainier's coarsest selection.)
