@@ -149,30 +149,40 @@ void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoi
 {
   for (const HoleCell& c : cells.cells)
   {
-    bool inside[4];
-    if (!c.nodata)
-    {
-      cellSidesWithVertices(cells, c, inside);
-    }
-    if (c.nodata || !(inside[South] || inside[East] || inside[North] || inside[West]))
+    if (c.nodata)
     {
       sink.quad(c.i0, c.j0, c.i1, c.j1);
       continue;
     }
-    // Counter-clockwise from the south-west corner, each corner once.
+    // Counter-clockwise from the south-west corner, each corner once; a side has vertices
+    // inside when its run holds more than its first corner.
     perimeter.clear();
+    std::size_t start = 0;
+    bool inside[4];
     for (int i = c.i0; i < c.i1; ++i)
       if (i == c.i0 || cells.isVertex(i, c.j0))
         perimeter.push_back({ i, c.j0 });
+    inside[South] = perimeter.size() - start > 1;
+    start = perimeter.size();
     for (int j = c.j0; j < c.j1; ++j)
       if (j == c.j0 || cells.isVertex(c.i1, j))
         perimeter.push_back({ c.i1, j });
+    inside[East] = perimeter.size() - start > 1;
+    start = perimeter.size();
     for (int i = c.i1; i > c.i0; --i)
       if (i == c.i1 || cells.isVertex(i, c.j1))
         perimeter.push_back({ i, c.j1 });
+    inside[North] = perimeter.size() - start > 1;
+    start = perimeter.size();
     for (int j = c.j1; j > c.j0; --j)
       if (j == c.j1 || cells.isVertex(c.i0, j))
         perimeter.push_back({ c.i0, j });
+    inside[West] = perimeter.size() - start > 1;
+    if (perimeter.size() == 4)
+    {
+      sink.quad(c.i0, c.j0, c.i1, c.j1); // only its corners: as drawArea draws a clean block
+      continue;
+    }
     drawCellPerimeter(sink, c.i0, c.j0, c.i1, c.j1, inside, perimeter, sides);
   }
 }

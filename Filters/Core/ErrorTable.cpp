@@ -172,10 +172,10 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     own[m] = running; // monotone over the valid levels
     if (nodata && shape == BlockShape::Ring)
     {
-      // A block with nodata draws no fewer triangles at every coarser level (its cells
-      // around a void can outnumber a finer level's: a void on a corner of 16-quad cells
-      // takes all four at full resolution). A level with no fewer triangles than a finer
-      // allowed one, whose error is no larger, is never worth drawing: not allowed.
+      // A block with nodata does not draw fewer triangles at every coarser level (its
+      // cells may split into the same pieces as a finer level's, HoleCells.h). A level
+      // with no fewer triangles than a finer allowed one, whose error is no larger, is
+      // never worth drawing: not allowed.
       const std::size_t count = blockTriangleCount(qt, block, cfg, &t); // cellTriangles above 0
       if (count >= fewest)
       {

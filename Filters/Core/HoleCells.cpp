@@ -159,16 +159,6 @@ void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out)
   markVertices(out);
 }
 
-void cellSidesWithVertices(const HoleCells& cells, const HoleCell& cell, bool inside[4])
-{
-  int count[4];
-  sideVertexCounts(cells, cell, count);
-  for (int side = South; side <= West; ++side)
-  {
-    inside[side] = count[side] > 0;
-  }
-}
-
 std::size_t holeCellsTriangleCount(const HoleCells& cells)
 {
   std::size_t n = 0;

@@ -76,9 +76,6 @@ struct HoleCells
 // once its buffers have grown, building allocates nothing.
 void buildHoleCells(const Quadtree& qt, int block, int level, HoleCells& out);
 
-// Whether each side of `cell` (Tessellate.h's Side order) has a vertex between its corners.
-void cellSidesWithVertices(const HoleCells& cells, const HoleCell& cell, bool inside[4]);
-
 // Triangles the cells draw (2 per full-resolution quad, fewer are drawn where they touch
 // nodata).
 std::size_t holeCellsTriangleCount(const HoleCells& cells);

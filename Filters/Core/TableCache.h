@@ -18,8 +18,8 @@
 // merged-node errors, version 3 made more of them exact (ErrorTable.h), version 4 follows
 // the one-quad diagonals and fan centres of Tessellate.h, version 5 the nodata collars'
 // bands (Quadtree.h) and the band hash, version 6 the coarse levels of blocks with nodata
-// (HoleCells.h), 7 and 8 their cells up to the border and their fans; an older file is
-// reported as such and rebuilt.
+// (HoleCells.h), 7 - 10 their cells (up to the border, fans from a corner, split towards
+// the nodata, drawn between opposite sides); an older file is reported as such and rebuilt.
 #pragma once
 
 #include "ErrorTable.h"

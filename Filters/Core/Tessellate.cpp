@@ -234,13 +234,10 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   {
     return;
   }
-  std::vector<int>& C = scratch.cols;
-  std::vector<int>& R = scratch.rows;
-  edgeSamples(r.i0, r.i1, config.level, C);
-  edgeSamples(r.j0, r.j1, config.level, R);
   if (drawnAsHoleCells(qt, block, config.level))
   {
-    // Cells over the whole block, its border included: no side strips.
+    // Cells over the whole block, its border included: no side strips (buildHoleCells
+    // finds the level's samples itself).
     if (part == BlockPart::Whole || part == BlockPart::Inner)
     {
       buildHoleCells(qt, block, config.level, scratch.cells);
@@ -248,6 +245,10 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     }
     return;
   }
+  std::vector<int>& C = scratch.cols;
+  std::vector<int>& R = scratch.rows;
+  edgeSamples(r.i0, r.i1, config.level, C);
+  edgeSamples(r.j0, r.j1, config.level, R);
   if (part == BlockPart::Whole || part == BlockPart::Inner)
   {
     drawArea(sink, C, R);
