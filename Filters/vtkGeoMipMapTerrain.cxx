@@ -170,7 +170,8 @@ size_t vtkGeoMipMapTerrain::GetMemoryBytes() const
   size_t bytes = t.hf.z.capacity() * sizeof(float);
   bytes += t.qt.nodes.capacity() * sizeof(gmm::QuadtreeNode) +
     t.qt.blockBox.capacity() * sizeof(gmm::Box) + t.qt.blockHasNodata.capacity() +
-    (t.qt.nodataBits.capacity() + t.qt.nodataBitsAt.capacity()) * sizeof(uint64_t);
+    (t.qt.nodataBits.capacity() + t.qt.nodataBitsAt.capacity()) * sizeof(uint64_t) +
+    t.qt.nodataDepth.capacity() * sizeof(uint16_t);
   bytes += (t.table.ownError.capacity() + t.table.ownErrorExact.capacity() +
              t.table.stripError.capacity()) * sizeof(float);
   return bytes;

@@ -50,9 +50,9 @@ float partError(const Heightfield& hf, const Quadtree& qt, int block, const Bloc
 // every ring level measured the edge line again for each edge level. Measured at 4097^2,
 // block 32, one thread on one core: the table in 0.70 s against 0.99 s.
 float sideStripError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
-  int side, Scratch& scratch)
+  int side, Scratch& scratch, const HoleCells* cells)
 {
-  sidePolylines(qt, block, cfg, side, scratch.emit);
+  sidePolylines(qt, block, cfg, side, scratch.emit, cells);
   const std::vector<GridPoint>& outer = scratch.emit.outer;
   const std::vector<GridPoint>& inner = scratch.emit.inner;
   const std::size_t levels = scratch.edgeLine.size() / 4;
@@ -88,10 +88,11 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
   float* strips = &t.stripError[static_cast<std::size_t>(block) * 4 * t.pairs];
   const bool nodata = qt.blockHasNodata[block] != 0;
   const bool empty = qt.everySampleNodata(block);
-  std::array<bool, 4> fine{};
+  const std::array<int, 4> neighbour = qt.blockNeighbours(block);
+  std::array<bool, 4> fine{}; // may be drawn at full resolution (with the levels or always)
   for (int side = 0; side < 4; ++side)
   {
-    fine[side] = qt.sideAtFullResolution(block, side);
+    fine[side] = qt.sideAtFullResolutionBeside(block, neighbour[side]);
   }
   scratch.edgeLine.assign(4 * static_cast<std::size_t>(t.levels), std::numeric_limits<float>::quiet_NaN());
   scratch.ringLine.assign(4 * static_cast<std::size_t>(t.levels), std::numeric_limits<float>::quiet_NaN());
@@ -109,13 +110,21 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     }
     // Full resolution with its own edges draws every sample: holes there are the data's.
     const bool strict = m > 0;
-    // Its own edges: the level, or every sample on a side at full resolution, which no
-    // neighbour changes (blockConfigOf).
-    BlockConfig cfg;
+    // Per side: whether it is always at full resolution at m (fullOnly: the block or its
+    // neighbour holds nodata, and one of them never follows the edge levels there), or is
+    // at full resolution or not with the neighbour's level (bothWays,
+    // Quadtree::sideAtFullResolutionAt), which its own error covers both ways while its
+    // strips towards coarser edges are measured as for any side.
+    std::array<bool, 4> fullOnly{}, bothWays{};
+    BlockConfig cfg; // its own edges: the level, or every sample where nothing else is drawn
     cfg.level = m;
     for (int side = 0; side < 4; ++side)
     {
-      cfg.edgeLevel[side] = fine[side] ? 0 : m;
+      const int nb = neighbour[side];
+      fullOnly[side] = fine[side] &&
+        !(qt.followsEdgeLevels(block, side, m) && (nb < 0 || qt.mayFollowEdgeLevels(nb, (side + 2) % 4)));
+      bothWays[side] = fine[side] && !fullOnly[side] && nb >= 0 && m > 0;
+      cfg.edgeLevel[side] = fullOnly[side] ? 0 : m;
     }
     // Level 0 with its own edges has every sample as a vertex: its error is exactly 0
     // (a vertex's residual is (zb - za) * A - A * (zb - za) = 0 in double), so only its
@@ -123,22 +132,55 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
     float e = 0.0f;
     if (shape != BlockShape::Ring)
     {
-      e = m == 0 ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Whole, strict, scratch);
-    }
-    else if (nodata && m > 0)
-    {
-      // Its cells around the nodata, border included (HoleCells.h): only full-resolution
-      // triangles touch nodata, and they are the data's own holes (not strict). A block
-      // with no valid sample (the sea beside a coast) draws none: error 0, not rasterised.
-      e = empty ? 0.0f : partError(hf, qt, block, cfg, BlockPart::Whole, false, scratch);
+      // One quad (or thin): one cell over its perimeter, which is not drawn in parts, so
+      // every combination of its sides drawn both ways (beside blocks with nodata).
+      std::array<int, 4> both{};
+      int bothCount = 0;
+      for (int side = 0; side < 4; ++side)
+      {
+        if (bothWays[side])
+        {
+          both[bothCount++] = side;
+        }
+      }
+      for (int mask = 0; m > 0 && mask < (1 << bothCount); ++mask)
+      {
+        BlockConfig combination = cfg;
+        for (int k = 0; k < bothCount; ++k)
+        {
+          combination.edgeLevel[both[k]] = (mask >> k) & 1 ? 0 : m;
+        }
+        e = std::max(e, partError(hf, qt, block, combination, BlockPart::Whole, strict, scratch));
+      }
     }
     else
     {
-      for (int side = 0; side < 4; ++side)
+      // A block with nodata above level 0 is cells around it (HoleCells.h), and side strips
+      // only where a side's border row is clear of it: only full-resolution cells touch
+      // nodata, and they are the data's own holes (not strict); its strips join the cells'
+      // vertices (sidePolylines) and cross no nodata (strict). A block with no valid sample
+      // (the sea beside a coast) draws nothing: error 0, not rasterised.
+      const HoleCells* cells = nullptr;
+      if (nodata && m > 0)
       {
-        float previous = m == 0 ? 0.0f : sideStripError(hf, qt, block, cfg, side, scratch);
+        buildHoleCells(qt, block, m, scratch.emit.cells);
+        cells = &scratch.emit.cells;
+      }
+      for (int side = 0; side < 4 && !empty; ++side)
+      {
+        if (cells && !cells->strip[side])
+        {
+          continue; // the cells reach the border there
+        }
+        float previous = m == 0 ? 0.0f : sideStripError(hf, qt, block, cfg, side, scratch, cells);
         e = std::max(e, previous);
-        if (fine[side])
+        if (bothWays[side])
+        {
+          BlockConfig full = cfg;
+          full.edgeLevel[side] = 0;
+          e = std::max(e, sideStripError(hf, qt, block, full, side, scratch, cells));
+        }
+        if (fullOnly[side])
         {
           continue; // no coarser edge: strips[] for this side stay unused (0)
         }
@@ -153,18 +195,25 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
           {
             BlockConfig coarse = cfg;
             coarse.edgeLevel[side] = n;
-            s = std::max(previous, sideStripError(hf, qt, block, coarse, side, scratch));
+            s = std::max(previous, sideStripError(hf, qt, block, coarse, side, scratch, cells));
           }
           strips[side * t.pairs + ErrorTable::pairIndex(m, n)] = s;
           previous = s;
         }
       }
-      // The inner grid after the strips: a strip over nodata (+inf) makes it moot.
-      if (m > 0 && e != kInf)
+      // The inner grid (or cells) after the strips: a strip over nodata (+inf) makes it moot.
+      if (m > 0 && e != kInf && !empty)
       {
-        edgeSamples(qt.colStart[block % qt.blockCols], qt.colStart[block % qt.blockCols + 1], m, scratch.emit.cols);
-        edgeSamples(qt.rowStart[block / qt.blockCols], qt.rowStart[block / qt.blockCols + 1], m, scratch.emit.rows);
-        e = std::max(e, innerAreaError(hf, scratch.emit.cols, scratch.emit.rows));
+        if (cells)
+        {
+          e = std::max(e, partError(hf, qt, block, cfg, BlockPart::Inner, false, scratch));
+        }
+        else
+        {
+          edgeSamples(qt.colStart[block % qt.blockCols], qt.colStart[block % qt.blockCols + 1], m, scratch.emit.cols);
+          edgeSamples(qt.rowStart[block / qt.blockCols], qt.rowStart[block / qt.blockCols + 1], m, scratch.emit.rows);
+          e = std::max(e, innerAreaError(hf, scratch.emit.cols, scratch.emit.rows));
+        }
       }
     }
     exact[m] = e;

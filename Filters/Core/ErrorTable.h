@@ -5,7 +5,8 @@
 // it covers.
 // A triangle that would cover or touch nodata at anything but full resolution has infinite
 // error; a block with nodata takes a coarser level drawn cell by cell (HoleCells.h), with
-// the nodata's cells at full resolution. Errors are computed in double
+// the nodata's cells at full resolution, and side strips where the nodata lies inside its
+// inner ring. Errors are computed in double
 // from height differences (a constant height offset, e.g. ECEF-like 6.4e6 m, gives the very
 // same table; a plane gives exactly 0) and rounded up to float, never below the exact value.
 // +inf means only "level not allowed": heights are bounded (kMaxHeight), so no real error
@@ -36,7 +37,8 @@ struct ErrorTable
 {
   int levels = 0; // entries per block (top level of the largest block + 1)
   // ownError[b * levels + m]: error of block b at level m with its own edges (the level, or
-  // every sample on a side at full resolution); made monotone
+  // every sample on a side that is always at full resolution at m; a side that may be
+  // either, Quadtree::sideAtFullResolutionAt, counts both ways); made monotone
   // (non-decreasing) in m; +inf for levels that are invalid for the block, and for the
   // levels of a block with nodata that draw no fewer triangles than a finer allowed one
   // (its cells may outnumber a finer level's, HoleCells.h).
@@ -45,8 +47,9 @@ struct ErrorTable
   std::vector<float> ownErrorExact;
   // stripError[((b * 4 + side) * pairs) + pairIndex(m, n)] for ring levels m < n: error of
   // the side strip of block b at level m when the edge is sampled at level n. Made monotone
-  // in n. Zero where unused: sides at full resolution (Quadtree::sideAtFullResolution) have
-  // no coarser edge, and their strip is part of ownError.
+  // in n. Zero where unused: sides always at full resolution at m (the block or its
+  // neighbour holds nodata and b does not follow the edge levels there,
+  // Quadtree::followsEdgeLevels) have no coarser edge, and their strip is part of ownError.
   std::vector<float> stripError;
   int pairs = 0; // levels * (levels - 1) / 2
   // mergedError[node]: error of quadtree node `node` drawn whole (Tessellate.h, merged
@@ -54,8 +57,10 @@ struct ErrorTable
   // range (a bound) elsewhere; +inf for leaves, nodes that are not mergeable and nodes
   // over nodata.
   std::vector<float> mergedError;
-  // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m > 0,
-  // drawn as cells with no strips (HoleCells.h), so a count of the level alone; 0 elsewhere.
+  // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m > 0 that
+  // depend on the level alone: its cells (HoleCells.h), and where they leave the border
+  // rows to side strips, the strips' steps along the inner ring (holeCellsTriangleCount);
+  // 0 elsewhere.
   // Triangle budgets ask for counts at every refinement step, and classifying the cells
   // each time made a budgeted frame over Rainier 10x slower. Empty when the DEM has no
   // nodata. Derived from the quadtree (fillCellTriangles), not stored in cache files.

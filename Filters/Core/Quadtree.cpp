@@ -262,6 +262,7 @@ void recordNodataBits(const Heightfield& hf, Quadtree& qt, int threads)
   }
   qt.nodataBitsAt = std::move(at);
   qt.nodataBits.assign(words, 0);
+  qt.nodataDepth.assign(4 * static_cast<std::size_t>(blocks), 0);
   // Rows of blocks in parallel: each block writes its own words.
   parallelChunks(static_cast<std::size_t>(qt.blockRows), 1, threads, [&](std::size_t first, std::size_t last) {
     for (int r = static_cast<int>(first); r < static_cast<int>(last); ++r)
@@ -275,16 +276,26 @@ void recordNodataBits(const Heightfield& hf, Quadtree& qt, int threads)
         }
         uint64_t* w = qt.nodataBits.data() + qt.nodataBitsAt[b];
         uint64_t bit = 0;
-        for (int j = qt.rowStart[r]; j <= qt.rowStart[r + 1]; ++j)
+        const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+        int depth[4] = { 65535, 65535, 65535, 65535 };
+        for (int j = j0; j <= j1; ++j)
         {
           const float* row = hf.heights() + hf.index(0, j);
-          for (int i = qt.colStart[c]; i <= qt.colStart[c + 1]; ++i, ++bit)
+          for (int i = i0; i <= i1; ++i, ++bit)
           {
             if (std::isnan(row[i]))
             {
               w[bit / 64] |= uint64_t(1) << (bit % 64);
+              depth[0] = std::min(depth[0], j - j0); // South, East, North, West
+              depth[1] = std::min(depth[1], i1 - i);
+              depth[2] = std::min(depth[2], j1 - j);
+              depth[3] = std::min(depth[3], i - i0);
             }
           }
+        }
+        for (int side = 0; side < 4; ++side)
+        {
+          qt.nodataDepth[4 * static_cast<std::size_t>(b) + side] = static_cast<uint16_t>(depth[side]);
         }
       }
     }

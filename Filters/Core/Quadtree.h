@@ -8,6 +8,7 @@
 #pragma once
 
 #include "Heightfield.h"
+#include "Levels.h"
 
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
@@ -53,6 +54,12 @@ struct Quadtree
   // coarse level (HoleCells.h) reads them instead of the heights.
   std::vector<uint64_t> nodataBits;
   std::vector<uint64_t> nodataBitsAt;
+  // nodataDepth[4 * block + side] (Side order: South, East, North, West), per block when
+  // the DEM has nodata: how many sample lines in from that side of the block hold no
+  // nodata (0 when nodata lies on the side, up to 65535). Empty when the DEM has none.
+  // Decides at which levels a side's border row of cells is clear of nodata
+  // (sideClearOfNodata).
+  std::vector<uint16_t> nodataDepth;
   // Per block column and per block row: 1 when the band is the upper half of the last split
   // that separated it from its sibling (upperHalfBands), which gives every one-quad block
   // its diagonal (oneQuadAntiDiagonal).
@@ -106,11 +113,11 @@ struct Quadtree
     return { r > 0 ? block - blockCols : -1, c + 1 < blockCols ? block + 1 : -1,
       r + 1 < blockRows ? block + blockCols : -1, c > 0 ? block - 1 : -1 };
   }
-  // Whether `side` of `block` (blockNeighbours' order) is drawn with every sample along it,
-  // whatever the levels of the blocks on either side: the block or the one across holds
-  // nodata (HoleCells.h). Both blocks of an edge answer alike, so their samples agree. The
-  // one rule that tessellation, the error table, triangle counts, merged nodes and
-  // geomorphing read.
+  // Whether `side` of `block` (blockNeighbours' order) may be drawn with every sample along
+  // it: the block or the one across holds nodata (HoleCells.h). Both blocks of an edge
+  // answer alike. Whether it is, at given levels, is sideAtFullResolutionAt; merged nodes'
+  // perimeters and geomorphing take every such side at full resolution, and the error
+  // table measures such a side both ways.
   bool sideAtFullResolution(int block, int side) const
   {
     // A DEM without nodata (no bits) has none: skip the neighbour lookup on hot paths.
@@ -122,6 +129,46 @@ struct Quadtree
   {
     return !nodataBits.empty() &&
       (blockHasNodata[block] || (neighbour >= 0 && blockHasNodata[neighbour]));
+  }
+  // Whether `block`, with nodata, at ring level `level` > 0 holds none in its level's border
+  // row of cells along `side` (lines 0 to 2^m in from it). That side is then drawn as a
+  // side strip that follows the neighbour's level, to the vertices of the block's cells
+  // around its nodata (HoleCells.h).
+  bool sideClearOfNodata(int block, int side, int level) const
+  {
+    return level > 0 && level < 16 && blockHasNodata[block] &&
+      (1 << level) < nodataDepth[4 * static_cast<std::size_t>(block) + side] &&
+      blockShape(blockWidth(block), blockHeight(block), level) == BlockShape::Ring;
+  }
+  // Whether `block` at `level` draws `side` at the edge level both blocks agree on (the
+  // coarser one), as a block without nodata does: it holds no nodata and is a ring or one
+  // quad (corners only) at that level, or holds nodata but none in that side's border row
+  // (sideClearOfNodata). A thin block, a block covered by a merged node or not drawn does
+  // not.
+  bool followsEdgeLevels(int block, int side, int level) const
+  {
+    if (blockHasNodata[block])
+    {
+      return sideClearOfNodata(block, side, level);
+    }
+    const BlockShape shape = blockShape(blockWidth(block), blockHeight(block), level);
+    return shape == BlockShape::Ring || shape == BlockShape::OneQuad;
+  }
+  // Whether `side` of `block` follows the edge levels at some level (followsEdgeLevels).
+  bool mayFollowEdgeLevels(int block, int side) const
+  {
+    return !blockHasNodata[block] || nodataDepth[4 * static_cast<std::size_t>(block) + side] > 2;
+  }
+  // The one rule of which sides are drawn with every sample at given levels (`level` of
+  // `block`, whose `side` it is, `neighbourLevel` of `neighbour` across it, -1 at the DEM's
+  // border): a side that may be (sideAtFullResolutionBeside) is, unless both blocks follow
+  // the edge levels there (a DEM border follows anything). Tessellation (blockConfigOf) and
+  // the selection read it; both blocks of an edge answer alike, so their samples agree.
+  bool sideAtFullResolutionAt(int block, int level, int side, int neighbour, int neighbourLevel) const
+  {
+    return sideAtFullResolutionBeside(block, neighbour) &&
+      !(followsEdgeLevels(block, side, level) &&
+        (neighbour < 0 || followsEdgeLevels(neighbour, (side + 2) % 4, neighbourLevel)));
   }
 };
 

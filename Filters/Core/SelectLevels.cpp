@@ -119,7 +119,7 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
     {
       const int nb = neighbour[side];
       const int nbLevel = nb >= 0 ? levels[nb] : -1;
-      if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel) || qt.sideAtFullResolution(b, side))
+      if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel) || qt.sideAtFullResolutionAt(b, levels[b], side, nb, nbLevel))
       {
         continue; // no strip of the neighbour joins this edge, or it does not follow b's level
       }

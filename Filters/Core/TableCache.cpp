@@ -35,8 +35,11 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // (Quadtree::sideAtFullResolution), which changes their errors and their neighbours'; 8:
 // fanned cells from a corner between two coarse sides (HoleCells.h, coarseCorner); 9: cells
 // holding nodata split towards it instead of drawn at full resolution (HoleCells.h); 10:
-// cells with vertices on opposite sides drawn between them instead of from their centre.
-constexpr uint32_t kFormatVersion = 10;
+// cells with vertices on opposite sides drawn between them instead of from their centre;
+// 11: a block with nodata draws side strips where its level's border row holds none, and
+// such a side follows the edge levels, as one-quad blocks' sides beside nodata do
+// (Quadtree::sideAtFullResolutionAt), which changes their errors and their neighbours'.
+constexpr uint32_t kFormatVersion = 11;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

@@ -43,7 +43,7 @@ void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
 
 // Whether `block` at `level` is drawn as cells (HoleCells.h): a block with nodata at a
 // level above 0 (level 0 draws every sample anyway, with its four edges at full
-// resolution: Quadtree::sideAtFullResolution).
+// resolution: Quadtree::sideAtFullResolutionAt).
 bool drawnAsHoleCells(const Quadtree& qt, int block, int level)
 {
   return level > 0 && qt.blockHasNodata[block];
@@ -68,29 +68,30 @@ void drawFan(Sink& sink, GridPoint apex, const std::vector<GridPoint>& run,
   }
 }
 
-// Joins the edge polyline (outer) to the inner ring polyline (inner) of one side. Both run
-// in the block's counter-clockwise direction; `along` gives each point's position along
-// the side. The merge advances whichever polyline's next point comes first, which cuts the
-// strip into alternating fans: any edge level joins any inner level. When the next outer
-// and inner points are level (a regular quad, as when both sides have the block's level),
-// `innerFirst` picks the quad's diagonal: the merge then splits it along the same
-// (i, j)-(i+1, j+1) diagonal as the inner grid, so that a block with its own edges draws
-// one regular triangulation (at level 0, exactly the full-resolution one).
+// Joins the edge polyline (outer) to the inner ring polyline (inner[first..last]) of one
+// side. Both run in the block's counter-clockwise direction; `along` gives each point's
+// position along the side. The merge advances whichever polyline's next point comes first,
+// which cuts the strip into alternating fans: any edge level joins any inner level. When
+// the next outer and inner points are level (a regular quad, as when both sides have the
+// block's level), `innerFirst` picks the quad's diagonal: the merge then splits it along
+// the same (i, j)-(i+1, j+1) diagonal as the inner grid, so that a block with its own edges
+// draws one regular triangulation (at level 0, exactly the full-resolution one).
 template <typename Sink, typename Along>
 void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
-  const std::vector<GridPoint>& inner, Along along, bool innerFirst)
+  const std::vector<GridPoint>& inner, std::size_t first, std::size_t last, Along along,
+  bool innerFirst)
 {
   // True when the outer point at position x is to be joined before the inner one at y.
   auto outerBefore = [innerFirst](int x, int y) { return innerFirst ? x < y : x <= y; };
-  std::size_t a = 0, b = 0;
-  while (a + 1 < outer.size() || b + 1 < inner.size())
+  std::size_t a = 0, b = first;
+  while (a + 1 < outer.size() || b < last)
   {
-    const bool advanceOuter = b + 1 >= inner.size() ||
+    const bool advanceOuter = b >= last ||
       (a + 1 < outer.size() && outerBefore(along(outer[a + 1]), along(inner[b + 1])));
     if (advanceOuter)
     {
       std::size_t end = a + 1;
-      while (end + 1 < outer.size() && (b + 1 >= inner.size() || outerBefore(along(outer[end + 1]), along(inner[b + 1]))))
+      while (end + 1 < outer.size() && (b >= last || outerBefore(along(outer[end + 1]), along(inner[b + 1]))))
       {
         ++end;
       }
@@ -100,13 +101,13 @@ void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
     else
     {
       std::size_t end = b + 1;
-      while (end + 1 < inner.size() && (a + 1 < outer.size() && !outerBefore(along(outer[a + 1]), along(inner[end + 1]))))
+      while (end < last && (a + 1 < outer.size() && !outerBefore(along(outer[a + 1]), along(inner[end + 1]))))
       {
         ++end;
       }
       if (a + 1 >= outer.size())
       {
-        end = inner.size() - 1;
+        end = last;
       }
       drawFan(sink, outer[a], inner, b, end, true);
       b = end;
@@ -116,9 +117,10 @@ void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
 
 // The two polylines of one side strip (Tessellate.h, sidePolylines), in the block's
 // counter-clockwise direction: the edge samples at the edge level (outer) and the inner
-// ring's samples along that side (inner).
+// ring's samples along that side (inner), or with `cells` (a block with nodata inside its
+// inner ring), the cells' vertices along it.
 void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<int>& R, int side,
-  int edgeLevel, EmitScratch& scratch)
+  int edgeLevel, EmitScratch& scratch, const HoleCells* cells)
 {
   std::vector<int>& edge = scratch.edge;
   std::vector<GridPoint>& outer = scratch.outer;
@@ -126,68 +128,91 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
   outer.clear();
   inner.clear();
   const std::size_t k = C.size() - 1, L = R.size() - 1;
+  scratch.stripStart.clear();
+  scratch.stripEnd.clear();
+  if (cells)
+  {
+    innerRingLine(*cells, side, inner);
+    stripEnds(*cells, side, scratch.stripStart, scratch.stripEnd);
+  }
   switch (side)
   {
     case South:
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
       for (int x : edge)
         outer.push_back({ x, r.j0 });
-      for (std::size_t u = 1; u < k; ++u)
+      for (std::size_t u = 1; !cells && u < k; ++u)
         inner.push_back({ C[u], R[1] });
       break;
     case East:
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
       for (int y : edge)
         outer.push_back({ r.i1, y });
-      for (std::size_t t = 1; t < L; ++t)
+      for (std::size_t t = 1; !cells && t < L; ++t)
         inner.push_back({ C[k - 1], R[t] });
       break;
     case North:
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
       for (auto it = edge.rbegin(); it != edge.rend(); ++it)
         outer.push_back({ *it, r.j1 });
-      for (std::size_t u = k - 1; u >= 1; --u)
+      for (std::size_t u = k - 1; !cells && u >= 1; --u)
         inner.push_back({ C[u], R[L - 1] });
       break;
     default: // West
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
       for (auto it = edge.rbegin(); it != edge.rend(); ++it)
         outer.push_back({ r.i0, *it });
-      for (std::size_t t = L - 1; t >= 1; --t)
+      for (std::size_t t = L - 1; !cells && t >= 1; --t)
         inner.push_back({ C[1], R[t] });
       break;
   }
 }
 
 // The strip of one side between its two polylines (sideLines), each side's direction
-// along the border and diagonal choice.
+// along the border and diagonal choice. A strip that ends on the block's border (a block
+// with nodata whose neighbouring side has no strip, HoleCells.h) first fans that end's
+// border samples from the inner line's second (second-last) point, and joins the rest.
 template <typename Sink>
-void drawSideLines(Sink& sink, const std::vector<GridPoint>& outer, const std::vector<GridPoint>& inner,
-  int side)
+void drawSideLines(Sink& sink, const EmitScratch& lines, int side)
 {
+  const std::vector<GridPoint>& outer = lines.outer;
+  const std::vector<GridPoint>& inner = lines.inner;
+  std::size_t first = 0, last = inner.size() - 1;
+  if (!lines.stripStart.empty())
+  {
+    for (std::size_t k = 0; k + 1 < lines.stripStart.size(); ++k)
+      triangleCCW(sink, inner[1], lines.stripStart[k], lines.stripStart[k + 1]);
+    first = 1;
+  }
+  if (!lines.stripEnd.empty())
+  {
+    for (std::size_t k = 0; k + 1 < lines.stripEnd.size(); ++k)
+      triangleCCW(sink, inner[last - 1], lines.stripEnd[k], lines.stripEnd[k + 1]);
+    last -= 1;
+  }
   switch (side)
   {
     case South:
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.i; }, true);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return p.i; }, true);
       break;
     case East:
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return p.j; }, false);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return p.j; }, false);
       break;
     case North:
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.i; }, true);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return -p.i; }, true);
       break;
     default: // West
-      drawSideStrip(sink, outer, inner, [](GridPoint p) { return -p.j; }, false);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return -p.j; }, false);
       break;
   }
 }
 
 template <typename Sink>
 void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
-  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch)
+  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch, const HoleCells* cells)
 {
-  sideLines(r, C, R, side, edgeLevel, scratch);
-  drawSideLines(sink, scratch.outer, scratch.inner, side);
+  sideLines(r, C, R, side, edgeLevel, scratch, cells);
+  drawSideLines(sink, scratch, side);
 }
 
 template <typename Sink>
@@ -205,7 +230,7 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     if (shape == BlockShape::OneQuad)
     {
       bool fine[4];
-      if (oneQuadFineSides(qt, block, fine))
+      if (oneQuadFineSides(qt, block, config, fine))
       {
         // A side at full resolution: the quad as one fanned cell (HoleCells.h).
         drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner, scratch.sides);
@@ -234,32 +259,42 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   {
     return;
   }
+  const bool wantsInner = part == BlockPart::Whole || part == BlockPart::Inner;
+  const HoleCells* cells = nullptr;
   if (drawnAsHoleCells(qt, block, config.level))
   {
-    // Cells over the whole block, its border included: no side strips (buildHoleCells
-    // finds the level's samples itself).
-    if (part == BlockPart::Whole || part == BlockPart::Inner)
+    // Cells around the nodata (buildHoleCells finds the level's samples itself): over the
+    // block, its border included, but for the border rows clear of nodata, which side
+    // strips draw to the cells' vertices.
+    buildHoleCells(qt, block, config.level, scratch.cells);
+    if (wantsInner)
     {
-      buildHoleCells(qt, block, config.level, scratch.cells);
       drawAreaAroundHoles(sink, scratch.cells, scratch.inner, scratch.sides);
     }
-    return;
+    if (!scratch.cells.anyStrip())
+    {
+      return;
+    }
+    cells = &scratch.cells;
   }
-  std::vector<int>& C = scratch.cols;
-  std::vector<int>& R = scratch.rows;
-  edgeSamples(r.i0, r.i1, config.level, C);
-  edgeSamples(r.j0, r.j1, config.level, R);
-  if (part == BlockPart::Whole || part == BlockPart::Inner)
+  std::vector<int>& C = cells ? scratch.cells.cols : scratch.cols;
+  std::vector<int>& R = cells ? scratch.cells.rows : scratch.rows;
+  if (!cells)
   {
-    drawArea(sink, C, R);
+    edgeSamples(r.i0, r.i1, config.level, C);
+    edgeSamples(r.j0, r.j1, config.level, R);
+    if (wantsInner)
+    {
+      drawArea(sink, C, R);
+    }
   }
   for (int side = South; side <= West; ++side)
   {
     const bool wanted = part == BlockPart::Whole ||
       static_cast<int>(part) == static_cast<int>(BlockPart::StripSouth) + side;
-    if (wanted)
+    if (wanted && (!cells || cells->strip[side]))
     {
-      drawSide(sink, r, C, R, side, config.edgeLevel[side], scratch);
+      drawSide(sink, r, C, R, side, config.edgeLevel[side], scratch, cells);
     }
   }
 }
@@ -290,18 +325,29 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
 }
 
 void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int side,
-  EmitScratch& scratch)
+  EmitScratch& scratch, const HoleCells* cells)
 {
   const BlockRect r = blockRect(qt, block);
   edgeSamples(r.i0, r.i1, config.level, scratch.cols);
   edgeSamples(r.j0, r.j1, config.level, scratch.rows);
-  sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch);
+  sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch, cells);
 }
 
 void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out)
 {
   GridSink sink(out);
-  drawSideLines(sink, lines.outer, lines.inner, side);
+  drawSideLines(sink, lines, side);
+}
+
+bool oneQuadFineSides(const Quadtree& qt, int block, const BlockConfig& config, bool fine[4])
+{
+  bool any = false;
+  for (int side = South; side <= West; ++side)
+  {
+    fine[side] = config.level > 0 && config.edgeLevel[side] == 0;
+    any = any || fine[side];
+  }
+  return any && qt.blockWidth(block) >= 2 && qt.blockHeight(block) >= 2;
 }
 
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block)
@@ -313,12 +359,12 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   for (int side = 0; side < 4; ++side)
   {
     const int nb = neighbour[side];
-    if (qt.sideAtFullResolutionBeside(block, nb))
+    int nl = nb >= 0 ? levels[nb] : -1;
+    if (qt.sideAtFullResolutionAt(block, cfg.level, side, nb, nl))
     {
-      cfg.edgeLevel[side] = 0; // beside nodata: every sample, whatever the levels
+      cfg.edgeLevel[side] = 0; // beside nodata that reaches the border rows: every sample
       continue;
     }
-    int nl = nb >= 0 ? levels[nb] : -1;
     if (nl == kCoveredLevel)
     {
       nl = top; // corners only, as the merged node's perimeter has them

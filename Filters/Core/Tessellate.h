@@ -9,11 +9,13 @@
 // derive its samples from the edge level alone, so they agree and no crack or T-junction
 // can appear. Triangles are counter-clockwise seen from +z in world coordinates.
 // Triangles touching a nodata (NaN) sample are not emitted. A block with nodata at a level
-// above 0 is drawn cell by cell around the nodata over its whole extent, without side
-// strips (HoleCells.h); every edge it shares is sampled at full resolution on both sides
-// (Quadtree::sideAtFullResolution), whatever the levels.
+// above 0 is drawn cell by cell around the nodata (HoleCells.h), over its extent but for
+// the border rows of its level's cells that hold no nodata, which side strips draw as any
+// ring block's do. A side whose border row holds nodata is sampled at full resolution on
+// both sides of the edge, whatever the levels (Quadtree::sideAtFullResolutionAt).
 #pragma once
 
+#include "GridTypes.h"
 #include "HoleCells.h"
 #include "Heightfield.h"
 #include "Quadtree.h"
@@ -24,14 +26,6 @@
 
 namespace gmm
 {
-
-enum Side
-{
-  South = 0, // j = first row of the block (low y when dy > 0)
-  East = 1,  // i = last column
-  North = 2, // j = last row
-  West = 3   // i = first column
-};
 
 // Part of a block to emit: the whole block, its inner grid only, or one side strip only.
 // The error table rasterises parts separately; drawing uses Whole.
@@ -49,19 +43,8 @@ struct BlockConfig
 {
   int level = 0;                        // the block's own level (valid for the block)
   // Per side: >= level (the coarser neighbour's) or == level; 0 (every sample) on a side at
-  // full resolution (Quadtree::sideAtFullResolution), whatever the levels.
+  // full resolution (Quadtree::sideAtFullResolutionAt).
   std::array<int, 4> edgeLevel{ 0, 0, 0, 0 };
-};
-
-struct GridPoint
-{
-  int i, j; // column, row
-};
-
-// One triangle as grid points, counter-clockwise in (i, j) grid space.
-struct GridTriangle
-{
-  GridPoint v[3];
 };
 
 // The points along each side of a cell (Side order), for drawing it between two sides.
@@ -76,6 +59,7 @@ struct EmitScratch
 {
   std::vector<int> cols, rows, edge;
   std::vector<GridPoint> outer, inner;
+  std::vector<GridPoint> stripStart, stripEnd; // a side strip's ends on the border (HoleCells.h)
   HoleCells cells;
   EmitSides sides;
 };
@@ -101,9 +85,13 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
 // in from the border), both in the block's counter-clockwise direction. Every strip
 // triangle has its vertices on these two lines, which are one row (South, North) or
 // column (East, West) each. scratch.cols and rows get the block's samples at its level.
-// A block with nodata at a level above 0 has no strips (HoleCells.h).
+// A block with nodata at a level above 0 has strips only on the sides whose border row is
+// clear of nodata (HoleCells.h): `cells` are then its cells at config.level
+// (buildHoleCells, cells.strip[side]), whose vertices on the strip's inner line are the
+// inner polyline, and scratch.stripStart and stripEnd get the strip's ends on the border
+// (stripEnds); nullptr for a block without nodata.
 void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int side,
-  EmitScratch& scratch);
+  EmitScratch& scratch, const HoleCells* cells = nullptr);
 // The side strip between the polylines sidePolylines left in `lines` (appended): the same
 // triangles as emitBlockGrid's part for that side, without finding the lines again.
 void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out);
@@ -151,9 +139,17 @@ void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::ve
   EmitScratch& scratch);
 void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out);
 
+// Whether `block`, at a one-quad level (Levels.h) with `config`, is drawn as one cell over
+// every sample of its sides at full resolution instead of two triangles, with `fine`
+// those sides: it has such a side (edge level 0 at a level above 0, blockConfigOf),
+// whose samples its neighbour draws, and is at least 2 quads either way. (A block one
+// quad wide lies in a DEM one quad wide: its long sides have no neighbour and its short
+// sides no sample between their corners.)
+bool oneQuadFineSides(const Quadtree& qt, int block, const BlockConfig& config, bool fine[4]);
+
 // Edge level of each side of `block` given every block's level (-1 = not drawn,
-// kCoveredLevel = drawn by a merged node): 0 on a side at full resolution
-// (Quadtree::sideAtFullResolution), else the coarser of the two blocks when the neighbour
+// kCoveredLevel = drawn by a merged node): 0 on a side at full resolution at these levels
+// (Quadtree::sideAtFullResolutionAt), else the coarser of the two blocks when the neighbour
 // is drawn, the block's top level (corners only) beside a merged node, else the block's
 // own level.
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);

@@ -20,7 +20,7 @@ std::size_t blockTriangleCount(
     case BlockShape::OneQuad:
     {
       bool fine[4];
-      return oneQuadFineSides(qt, block, fine) ? fannedCellTriangleCount(w, h, fine) : 2;
+      return oneQuadFineSides(qt, block, config, fine) ? fannedCellTriangleCount(w, h, fine) : 2;
     }
     case BlockShape::Thin:
       return 2 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
@@ -34,26 +34,40 @@ std::size_t blockTriangleCount(
   // step along either polyline: (edge samples - 1) + (inner ring samples - 1).
   const std::size_t nc = static_cast<std::size_t>(edgeSampleCount(i0, i1, config.level));
   const std::size_t nr = static_cast<std::size_t>(edgeSampleCount(j0, j1, config.level));
+  // Side strips' fans emit one triangle per step along either polyline; this is the edge's.
+  auto edgeSteps = [&](int side) {
+    const bool horizontal = side == South || side == North;
+    return static_cast<std::size_t>(horizontal ? edgeSampleCount(i0, i1, config.edgeLevel[side])
+                                               : edgeSampleCount(j0, j1, config.edgeLevel[side])) - 1;
+  };
   if (config.level > 0 && qt.blockHasNodata[block])
   {
-    // Cells over the whole block, no strips (HoleCells.h).
+    // Cells over the block but for the border rows clear of nodata, which side strips draw
+    // (HoleCells.h): the cells and the strips' steps along their inner lines are a count of
+    // the level alone, the steps along their edges follow the configuration.
+    std::size_t n = 0;
     if (table && !table->cellTriangles.empty())
     {
-      return table->cellTriangles[static_cast<std::size_t>(block) * table->levels + config.level];
+      n = table->cellTriangles[static_cast<std::size_t>(block) * table->levels + config.level];
     }
-    HoleCells cells;
-    buildHoleCells(qt, block, config.level, cells);
-    return holeCellsTriangleCount(cells);
+    else
+    {
+      HoleCells cells;
+      buildHoleCells(qt, block, config.level, cells);
+      n = holeCellsTriangleCount(cells);
+    }
+    for (int side = South; side <= West; ++side)
+    {
+      n += qt.sideClearOfNodata(block, side, config.level) ? edgeSteps(side) : 0;
+    }
+    return n;
   }
   std::size_t n = 2 * (nc - 3) * (nr - 3);
   for (int side = South; side <= West; ++side)
   {
     const bool horizontal = side == South || side == North;
-    const std::size_t edge = static_cast<std::size_t>(horizontal
-        ? edgeSampleCount(i0, i1, config.edgeLevel[side])
-        : edgeSampleCount(j0, j1, config.edgeLevel[side]));
     const std::size_t inner = (horizontal ? nc : nr) - 2;
-    n += (edge - 1) + (inner - 1);
+    n += edgeSteps(side) + (inner - 1);
   }
   return n;
 }

@@ -3,7 +3,8 @@
 //
 // The count is that of the block drawn over every sample; a block with NaN samples draws
 // fewer (emitBlock drops triangles touching them), so for a budget the count is an upper
-// bound. A block with nodata at a level above 0 counts its cells (HoleCells.h).
+// bound. A block with nodata at a level above 0 counts its cells (HoleCells.h), and its
+// side strips where the cells leave them its border rows.
 #pragma once
 
 #include "ErrorTable.h"
@@ -17,8 +18,8 @@ namespace gmm
 
 // Triangles of `block` drawn whole at `config` (its level must be valid for the block,
 // Levels.h; an invalid one draws nothing and counts 0). A block with nodata at a level
-// above 0 is read from table->cellTriangles when a table with them is given, else its
-// cells are classified here.
+// above 0 is read from table->cellTriangles (plus its strips' steps along their edges)
+// when a table with them is given, else its cells are classified here.
 std::size_t blockTriangleCount(
   const Quadtree& qt, int block, const BlockConfig& config, const ErrorTable* table = nullptr);
 

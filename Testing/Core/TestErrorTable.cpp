@@ -142,13 +142,45 @@ double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t
 
 namespace
 {
-// The own edges of block b at level m: m, or every sample (0) on a side at full
-// resolution (beside nodata).
+// The edge levels that side `side` of block b at level m is drawn with (blockConfigOf) over
+// every state of the block across it: not drawn, covered by a merged node, or at any of
+// its levels. Sorted.
+std::vector<int> possibleEdges(const gmm::Quadtree& qt, int b, int m, int side)
+{
+  std::vector<int8_t> levels(static_cast<std::size_t>(qt.blockCount()), -1);
+  levels[b] = static_cast<int8_t>(m);
+  const int nb = qt.blockNeighbours(b)[side];
+  std::vector<int> states{ -1 };
+  if (nb >= 0)
+  {
+    states.push_back(gmm::kCoveredLevel);
+    for (int l = 0; l <= gmm::topLevel(qt.blockWidth(nb), qt.blockHeight(nb)); ++l)
+      if (gmm::blockShape(qt.blockWidth(nb), qt.blockHeight(nb), l) != gmm::BlockShape::Invalid)
+        states.push_back(l);
+  }
+  std::vector<int> out;
+  for (int l : states)
+  {
+    if (nb >= 0)
+      levels[nb] = static_cast<int8_t>(l);
+    const int e = gmm::blockConfigOf(qt, levels, b).edgeLevel[side];
+    if (std::find(out.begin(), out.end(), e) == out.end())
+      out.push_back(e);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The own edges of block b at level m: m, or every sample (0) on a side that is never
+// drawn at m there (beside nodata, Quadtree::sideAtFullResolutionAt).
 std::array<int, 4> ownEdges(const gmm::Quadtree& qt, int b, int m)
 {
   std::array<int, 4> e{};
   for (int side = 0; side < 4; ++side)
-    e[side] = qt.sideAtFullResolution(b, side) ? 0 : m;
+  {
+    const std::vector<int> edges = possibleEdges(qt, b, m, side);
+    e[side] = std::find(edges.begin(), edges.end(), m) != edges.end() ? m : 0;
+  }
   return e;
 }
 
@@ -275,20 +307,31 @@ TEST(ErrorTable, StripAndOwnEntriesEqualBruteForceOverTheirTriangles)
         double own = 0.0; // level 0 with its own edges: every sample a vertex
         if (m > 0)
         {
-          gmm::BlockConfig cfg;
-          cfg.level = m;
-          cfg.edgeLevel = ownEdges(qt, b, m);
-          tris.clear();
-          gmm::emitBlockGrid(qt, b, cfg, gmm::BlockPart::Whole, tris, scratch);
+          // Every side at each edge level up to m that it can be drawn with: its own level,
+          // and full resolution where that depends on the neighbour's level.
           const bool cells = qt.blockHasNodata[b] != 0;
-          own = cells ? bruteHoles(hf, tris) : bruteStrict(hf, tris);
+          for (int side = 0; side < 4; ++side)
+          {
+            for (int e : possibleEdges(qt, b, m, side))
+            {
+              if (e > m)
+                continue;
+              gmm::BlockConfig cfg;
+              cfg.level = m;
+              cfg.edgeLevel = ownEdges(qt, b, m);
+              cfg.edgeLevel[side] = e;
+              tris.clear();
+              gmm::emitBlockGrid(qt, b, cfg, gmm::BlockPart::Whole, tris, scratch);
+              own = std::max(own, cells ? bruteHoles(hf, tris) : bruteStrict(hf, tris));
+            }
+          }
           ASSERT_FALSE(cells && std::isinf(table.ownExact(b, m))) << "block " << b << " m " << m;
           expectNear(table.ownExact(b, m), own, "own", b, m, m, -1);
           withNodata += cells ? 1 : 0;
         }
         for (int side = 0; side < 4; ++side)
         {
-          if (qt.sideAtFullResolution(b, side))
+          if (possibleEdges(qt, b, m, side).back() <= m)
             continue; // no coarser edge: its strip is part of the own error above
           double running = 0.0;
           if (m > 0)

@@ -286,29 +286,32 @@ void expectPlaneDrawnExactly(const gmm::Engine& e, const gmm::Heightfield& hf, c
 TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (16, 16), the centre of
-  // block 0. By hand (HoleCells.h): block 0 is drawn cell by cell, its border at full
-  // resolution. (16, 16) is a corner of the four cells around it at every level, and each
-  // of those is split towards it down to the quad that holds it. A cell is drawn over its
-  // vertices (its corners and every other cell's corner on its sides) in two triangles
-  // fewer than it has vertices: from a corner between two sides without vertices inside
-  // (coarseCorner), else between two opposite sides with vertices.
-  // - Level 3 (4 x 4 cells of 8 quads). The cell south-west of the void, [8, 16]^2, splits
-  //   into three clean 4-quad cells ([8, 12]^2: 2 triangles; the two beside [12, 16]^2,
-  //   whose side has that cell's split point at 14: 3 each), [12, 16]^2 into three clean
-  //   2-quad cells (2, 3, 3) and [14, 16]^2 into three clean quads (2 each) and the quad
-  //   holding (16, 16): 22 triangles; the other three cells around the void are its
-  //   mirror images. Of the four quads with (16, 16) as a corner, 2 of their 8 triangles
-  //   do not touch it. The 4 corner cells: their two border sides, 4 + 7 + 7 - 2 = 16
-  //   each; the 8 other border cells: their border side and the split point 12 (or 20)
-  //   on the side facing the void's cells: 4 + 7 + 1 - 2 = 10 each (a fan from the centre
-  //   would draw 12). 4 x 22 + 2 + 4 x 16 + 8 x 10 = 234.
-  // - Levels 4 and 5 split into the same cells, so they draw no fewer triangles: not
-  //   allowed. Level 2 draws 282 (the 28 border cells 152, the void's four cells 58, the 8
-  //   cells beside them 3 each, the other 24 cells 2 each) and level 1 602.
-  // So at any error block 0 takes level 3. Blocks 1 and 2 (east and north of it) take
-  // their one-quad level as one fan over their side beside block 0 at full resolution:
-  // 4 + 31 - 2 triangles each; block 3 one quad (the root cannot merge over nodata).
-  // Without the cells block 0 would draw its 2 048 full-resolution triangles less 6.
+  // block 0. By hand (HoleCells.h): block 0 is drawn as cells around the nodata, but for
+  // the border rows of its level's cells that hold none, which side strips draw to the
+  // cells' vertices. (16, 16) is 16 lines in from every side: at level 3 (8-quad cells)
+  // no border row holds it, at level 4 every one does. (16, 16) is a corner of the four
+  // cells around it at every level, and each of those is split towards it down to the quad
+  // that holds it. A cell is drawn over its vertices (its corners and every other cell's
+  // corner on its sides) in two triangles fewer than it has vertices.
+  // - Level 3: cells over [8, 24]^2, 2 x 2 cells of 8 quads. The cell south-west of the
+  //   void, [8, 16]^2, splits into three clean 4-quad cells ([8, 12]^2: 2 triangles; the
+  //   two beside [12, 16]^2, whose side has that cell's split point at 14: 3 each),
+  //   [12, 16]^2 into three clean 2-quad cells (2, 3, 3) and [14, 16]^2 into three clean
+  //   quads (2 each) and the quad holding (16, 16): 22 triangles; the other three cells
+  //   are its mirror images. Of the four quads with (16, 16) as a corner, 2 of their 8
+  //   triangles do not touch it: cells 4 x 22 + 2 = 90. Strips (one triangle per step
+  //   along either line, Tessellate.h): the inner lines have the cells' corners 8, 12, 16,
+  //   20, 24 (4 steps); the south and west edges lie on the DEM's border, at the level (4
+  //   steps): 8 each; the east and north edges beside the one-quad blocks 1 and 2 are
+  //   their corners (1 step): 5 each. 90 + 2 x 8 + 2 x 5 = 116.
+  // - Level 4 is cells over the whole block, 234 triangles (levels 4 and 5 split into the
+  //   same cells and draw the border at full resolution), more than level 3: not allowed,
+  //   nor is 5. Level 2 draws more than 3 (cells over [4, 28]^2 of 4 quads).
+  // So at any error block 0 takes level 3. Blocks 1, 2 and 3 take their one-quad level, 2
+  // triangles each (the root cannot merge over nodata): their sides beside block 0 follow
+  // its strips. Without the cells block 0 would draw its 2 048 full-resolution triangles
+  // less 6; before its strips (session 12) 236, and blocks 1 and 2 fanned over their side
+  // at full resolution, 33 each.
   const gmm::Heightfield hf = planeWithOneVoid(3.0f, 2.0f, 16, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
@@ -317,7 +320,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 22 + 2 + 4 * 16 + 8 * 10) + 2 * (4 + 31 - 2) + 2);
+  EXPECT_EQ(s.triangles, (4u * 22 + 2 + 2 * (4 + 4) + 2 * (1 + 4)) + 3 * 2);
   expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
@@ -325,35 +328,40 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
 {
   // A 65 x 65 plane, block 32 (2 x 2 blocks), one nodata sample at (32, 16): on the side
   // blocks 0 and 1 share. Before the cells reached the border, a strip could not pass it
-  // and both blocks were drawn at full resolution. By hand (HoleCells.h, cells and fans as
-  // in the test above), block 0 at level 4 (2 x 2 cells of 16 quads):
-  // - the two western cells: two border sides (15 vertices each inside) and, on the side
-  //   facing the eastern cells, their split point (8 or 24): 4 + 15 + 15 + 1 - 2 = 33 each;
-  // - the south-eastern cell [16, 32] x [0, 16] splits towards (32, 16): [16, 24] x [0, 8]
-  //   over its border side from a corner, 4 + 7 - 2 = 9; [24, 32] x [0, 8] over two border
-  //   sides and the split point 28 above it, 4 + 7 + 7 + 1 - 2 = 17; [16, 24] x [8, 16] with
-  //   the split point 12 on its east side, 3. [24, 32] x [8, 16] splits into
-  //   [24, 28] x [8, 12] (2), [28, 32] x [8, 12] (its border side's 3 vertices and 30
-  //   above it, from the corner: 6) and [24, 28] x [12, 16] (3); [28, 32] x [12, 16] into
-  //   [28, 30] x [12, 14] (2), [30, 32] x [12, 14] (4), [28, 30] x [14, 16] (3); and
+  // and both blocks were drawn at full resolution. By hand (HoleCells.h, cells, fans and
+  // strips as in the test above), block 0 at level 3: the east border row holds the void,
+  // the south, north and west ones (16, 16 and 32 lines from it) do not.
+  // - Cells over [8, 32] x [8, 24], its east side at full resolution. [8, 16] x [8, 24]:
+  //   two clean cells with only their corners, 2 each; [16, 24] x [8, 16] and its mirror
+  //   image have the split point 12 (20) on their east side: 3 each. [24, 32] x [8, 16]
+  //   splits towards (32, 16): [24, 28] x [8, 12] (2), [28, 32] x [8, 12] (3 border
+  //   samples and the split point 30 above it: 6), [24, 28] x [12, 16] (split point 14 on
+  //   its east side: 3); [28, 32] x [12, 16] into [28, 30] x [12, 14] (2), [30, 32] x [12, 14]
+  //   (border sample 13 and split point 31: 4), [28, 30] x [14, 16] (split point 15: 3) and
   //   [30, 32] x [14, 16] into three clean quads (2 each) and the quad holding (32, 16),
-  //   both of whose triangles touch it: 55;
-  // - the north-eastern cell is its mirror image: 55, and 1 triangle of its quad at the
-  //   void does not touch it.
-  // 177 triangles. Level 5 splits into the same cells (no fewer triangles: not allowed);
-  // level 3 draws 183 (its eastern corner cells have two border sides and the split point
-  // 28 on their inner side: 17 each) and level 2 over 200 (its 28 border cells alone 152, the other 36
-  // at least 2 each). Block 1 is block 0's mirror image, and of its two quads at the void 1
-  // triangle does not touch it: 177. Blocks 2 and 3 take their
-  // one-quad level, fanned over the side they share with a block with nodata: 4 + 31 - 2.
+  //   both of whose triangles touch it: 26. Its mirror image [24, 32] x [16, 24]: 26, and 1
+  //   triangle of its quad at the void does not touch it. Cells: 2 x 2 + 2 x 3 + 2 x 26 + 1.
+  // - Strips: the south one's edge on the DEM's border at the level (0 to 32: 4 steps), its
+  //   inner line the cells' corners 8, 16, 24, 28, 32 (4 steps), and its east end on the
+  //   block's border, j = 0 to 8 at full resolution, fanned from (28, 8): 7 triangles more:
+  //   15. The north one's edge beside the one-quad block 2, its corners (1 step), 4 steps
+  //   inside, 7 at its end: 12. The west one's edge on the DEM's border (4 steps), its
+  //   inner line 24, 16, 8 (2 steps): 6.
+  // 96 triangles. Level 4 has strips on the west side alone, and its cells split as
+  //   before (the two eastern 16-quad cells alone 55 each): more, not allowed, nor is 5;
+  //   level 2 has more cells. Block 1 is block 0's mirror image, and of its two quads at the
+  //   void 1 triangle does not touch it: 96. Blocks 2 and 3 take their one-quad level, 2
+  //   triangles each: their sides beside blocks 0 and 1 follow those blocks' strips. Before
+  //   the strips (session 12): blocks 0 and 1 at level 4, 177 each, and blocks 2 and 3
+  //   fanned over their side at full resolution, 33 each.
   const gmm::Heightfield hf = planeWithOneVoid(2.0f, -3.0f, 32, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
   const gmm::FrameStats& s = e.updateForError(1e9);
-  EXPECT_EQ(e.levels()[0], 4);
-  EXPECT_EQ(e.levels()[1], 4);
+  EXPECT_EQ(e.levels()[0], 3);
+  EXPECT_EQ(e.levels()[1], 3);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, 2u * (2 * 33 + 55 + 55 + 1) + 2 * (4 + 31 - 2));
+  EXPECT_EQ(s.triangles, 2u * ((2 * 2 + 2 * 3 + 2 * 26 + 1) + 15 + 12 + 6) + 2 * 2);
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }
