@@ -59,8 +59,9 @@ enum class BudgetStop
 
 struct BudgetOutcome
 {
-  // Triangles of the selection as counted by blockTriangleCount: an upper bound on what is
-  // drawn (nodata drops triangles), so the drawn count is <= the budget unless OverBudget.
+  // Triangles of the selection as counted by blockTriangleCount: what is drawn, or more
+  // (a DEM one quad wide counts its nodata's triangles), so the drawn count is <= the budget
+  // unless OverBudget.
   std::size_t triangles = 0;
   std::size_t coarsestTriangles = 0; // the starting selection's count
   int refinements = 0;               // levels lowered by one step

@@ -277,14 +277,24 @@ void fillCellTriangles(const Quadtree& qt, ErrorTable& table, int threads)
       for (int b = static_cast<int>(begin); b < static_cast<int>(end); ++b)
       {
         const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-        for (int m = 1; qt.blockHasNodata[b] && m < table.levels; ++m)
+        for (int m = 0; qt.blockHasNodata[b] && m < table.levels; ++m)
         {
-          if (blockShape(w, h, m) == BlockShape::Ring)
+          if (blockShape(w, h, m) != BlockShape::Ring)
+          {
+            continue;
+          }
+          std::size_t n = 0;
+          if (m == 0)
+          {
+            BlockConfig full; // level 0, every side at full resolution (followsEdgeLevels)
+            n = drawnTriangleCount(qt, b, full);
+          }
+          else
           {
             buildHoleCells(qt, b, m, cells);
-            table.cellTriangles[static_cast<std::size_t>(b) * table.levels + m] =
-              static_cast<uint32_t>(holeCellsTriangleCount(cells));
+            n = holeCellsTriangleCount(cells);
           }
+          table.cellTriangles[static_cast<std::size_t>(b) * table.levels + m] = static_cast<uint32_t>(n);
         }
       }
     });

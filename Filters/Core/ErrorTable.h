@@ -57,10 +57,11 @@ struct ErrorTable
   // range (a bound) elsewhere; +inf for leaves, nodes that are not mergeable and nodes
   // over nodata.
   std::vector<float> mergedError;
-  // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m > 0 that
-  // depend on the level alone: its cells (HoleCells.h), and where they leave the border
-  // rows to side strips, the strips' steps along the inner ring (holeCellsTriangleCount);
-  // 0 elsewhere.
+  // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m that
+  // depend on the level alone, those that nodata drops left out: at level 0 every quad
+  // (drawnTriangleCount), above it its cells (HoleCells.h) and where they leave
+  // the border rows to side strips, the strips' steps along the inner ring
+  // (holeCellsTriangleCount); 0 elsewhere.
   // Triangle budgets ask for counts at every refinement step, and classifying the cells
   // each time made a budgeted frame over Rainier 10x slower. Empty when the DEM has no
   // nodata. Derived from the quadtree (fillCellTriangles), not stored in cache files.

@@ -54,6 +54,12 @@ uint32_t nodataIn(const HoleCells& h, const HoleCell& c)
   return s[y1 * stride + x1] - s[y0 * stride + x1] - s[y1 * stride + x0] + s[y0 * stride + x0];
 }
 
+// Whether sample (i, j) of the area is nodata, from the summed table.
+bool isNodata(const HoleCells& h, int i, int j)
+{
+  return nodataIn(h, HoleCell{ i, j, i, j, false }) != 0;
+}
+
 // The vertices: every cell's corners, and the block's border where the cells reach it (its
 // every sample, as the neighbours' edges have them). A side strip's inner line has the
 // cells' corners only: the strip joins them.
@@ -249,7 +255,12 @@ std::size_t holeCellsTriangleCount(const HoleCells& cells)
   {
     if (cell.nodata)
     {
-      n += 2;
+      // Drawn as at full resolution (TriangleSinks.h, quad), less the triangles with a
+      // nodata corner, which are dropped.
+      const bool sw = isNodata(cells, cell.i0, cell.j0), se = isNodata(cells, cell.i1, cell.j0);
+      const bool ne = isNodata(cells, cell.i1, cell.j1), nw = isNodata(cells, cell.i0, cell.j1);
+      n += (sw || se || ne) ? 0 : 1;
+      n += (sw || ne || nw) ? 0 : 1;
       continue;
     }
     int count[4];

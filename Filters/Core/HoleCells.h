@@ -112,8 +112,8 @@ void innerRingLine(const HoleCells& cells, int side, std::vector<GridPoint>& out
 // then ends on the diagonal of its corner square, as a ring block's does).
 void stripEnds(const HoleCells& cells, int side, std::vector<GridPoint>& start, std::vector<GridPoint>& end);
 
-// Triangles the cells draw (2 per full-resolution quad, fewer are drawn where they touch
-// nodata), and the side strips' triangles that depend on the level alone: one per step
+// Triangles the cells draw (a full-resolution quad: its triangles without a nodata
+// corner), and the side strips' triangles that depend on the level alone: one per step
 // along their inner lines, and their ends' fans beyond that. A side strip adds one triangle
 // per step along its edge too, which depends on the edge level and is the caller's to add.
 std::size_t holeCellsTriangleCount(const HoleCells& cells);

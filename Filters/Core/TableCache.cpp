@@ -38,8 +38,10 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // cells with vertices on opposite sides drawn between them instead of from their centre;
 // 11: a block with nodata draws side strips where its level's border row holds none, and
 // such a side follows the edge levels, as one-quad blocks' sides beside nodata do
-// (Quadtree::sideAtFullResolutionAt), which changes their errors and their neighbours'.
-constexpr uint32_t kFormatVersion = 11;
+// (Quadtree::sideAtFullResolutionAt), which changes their errors and their neighbours';
+// 12: triangle counts leave out what nodata drops, which changes which levels of a block
+// with nodata draw fewer triangles than a finer one, so are allowed.
+constexpr uint32_t kFormatVersion = 12;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

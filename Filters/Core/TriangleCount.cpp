@@ -40,6 +40,14 @@ std::size_t blockTriangleCount(
     return static_cast<std::size_t>(horizontal ? edgeSampleCount(i0, i1, config.edgeLevel[side])
                                                : edgeSampleCount(j0, j1, config.edgeLevel[side])) - 1;
   };
+  if (config.level == 0 && qt.blockHasNodata[block])
+  {
+    // Every quad (its sides are all at full resolution: Quadtree::followsEdgeLevels), less
+    // the triangles that nodata drops.
+    return table && !table->cellTriangles.empty()
+      ? table->cellTriangles[static_cast<std::size_t>(block) * table->levels]
+      : drawnTriangleCount(qt, block, config);
+  }
   if (config.level > 0 && qt.blockHasNodata[block])
   {
     // Cells over the block but for the border rows clear of nodata, which side strips draw
@@ -68,6 +76,24 @@ std::size_t blockTriangleCount(
     const bool horizontal = side == South || side == North;
     const std::size_t inner = (horizontal ? nc : nr) - 2;
     n += edgeSteps(side) + (inner - 1);
+  }
+  return n;
+}
+
+std::size_t drawnTriangleCount(const Quadtree& qt, int block, const BlockConfig& config)
+{
+  std::vector<GridTriangle> triangles;
+  EmitScratch scratch;
+  emitBlockGrid(qt, block, config, BlockPart::Whole, triangles, scratch);
+  std::size_t n = 0;
+  for (const GridTriangle& t : triangles)
+  {
+    bool valid = true;
+    for (const GridPoint& p : t.v)
+    {
+      valid = valid && !qt.sampleIsNodata(block, p.i, p.j);
+    }
+    n += valid ? 1 : 0;
   }
   return n;
 }
