@@ -27,6 +27,7 @@ geomipmap_add_python_files(
   geomipmap_apps/view/__init__.py
   geomipmap_apps/view/__main__.py
   geomipmap_apps/view/cli.py
+  geomipmap_apps/view/motion_rate.py
   geomipmap_apps/view/progress.py
   geomipmap_apps/view/viewer.py)
 # Build trees configured before the tools shared one package hold the old top-level

@@ -25,6 +25,8 @@ from vtkmodules.vtkRenderingCore import (
 )
 import vtkmodules.vtkRenderingFreeType  # noqa: F401 (text rendering)
 
+from .motion_rate import MotionRate
+
 TAU_MIN, TAU_MAX = 1.0 / 16.0, 256.0
 
 # (key symbols, action, what it does): dispatch, the help overlay and the user guide's
@@ -237,12 +239,11 @@ class Viewer:
         self.interactor = vtkRenderWindowInteractor()
         self.interactor.SetRenderWindow(self.window)
         self.fps = fps
+        self.motion_rate = None
         if fps:
-            # VTK splits a frame's time evenly among the window's renderers; the overlay's
-            # (text only) costs next to nothing, so the rate asked of VTK is lowered for
-            # the terrain's renderer to get the whole 1 / fps.
-            renderers = max(self.window.GetRenderers().GetNumberOfItems(), 1)
-            self.interactor.SetDesiredUpdateRate(fps / renderers)
+            # The terrain gets what the rest of the frame leaves of 1 / fps (MotionRate).
+            self.motion_rate = MotionRate(fps, self.window.GetRenderers().GetNumberOfItems())
+            self.interactor.SetDesiredUpdateRate(self.motion_rate.desired_update_rate())
             self.mapper.FollowAllocatedRenderTimeOn()
         self.orbit_style = vtkInteractorStyleTerrain()
         self.fly_style = FlyStyle(self)
@@ -455,6 +456,14 @@ class Viewer:
             self.window.WaitForCompletion()
             self.frame_ms = (time.perf_counter() - self._t0) * 1000.0
             self._t0 = None
+            if self.motion_rate and self.mapper.GetLastFrameInteractive():
+                # A moving frame: what the rest of it took moves the terrain's share of
+                # the next ones, this drag's and the next drags'.
+                self.motion_rate.record(self.frame_ms / 1000.0, self.mapper.GetLastRenderTime())
+                rate = self.motion_rate.desired_update_rate()
+                self.interactor.SetDesiredUpdateRate(rate)
+                if self.window.GetDesiredUpdateRate() != self.interactor.GetStillUpdateRate():
+                    self.window.SetDesiredUpdateRate(rate)
 
     def stats(self):
         """The figures the overlay shows, of the frame rendered last."""
@@ -469,6 +478,7 @@ class Viewer:
                 "certified_error_px": m.GetMaximumScreenSpaceError() if drawn else 0.0,
                 "lod_ms": m.GetLastUpdateTime() * 1000.0 if drawn else 0.0,
                 "frame_ms": self.frame_ms, "frozen": self.frozen(),
+                "draw_ms": m.GetLastRenderTime() * 1000.0 if drawn else 0.0,
                 # --fps: whether the frame was a moving one, drawn within a triangle budget
                 # for its allocated time, and that budget.
                 "interactive": bool(drawn and m.GetLastFrameInteractive()),
