@@ -117,8 +117,9 @@ void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
 
 // The two polylines of one side strip (Tessellate.h, sidePolylines), in the block's
 // counter-clockwise direction: the edge samples at the edge level (outer) and the inner
-// ring's samples along that side (inner), or with `cells` (a block with nodata inside its
-// inner ring), the cells' vertices along it.
+// ring's samples along that side (inner), or with `cells` (a block with nodata, whose
+// border row along this side is clear of it), the cells' vertices along the row's inner
+// line, and the strip's ends on the block's border (stripEnds).
 void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<int>& R, int side,
   int edgeLevel, EmitScratch& scratch, const HoleCells* cells)
 {
