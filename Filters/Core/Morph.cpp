@@ -291,11 +291,15 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
 
   // Edge levels and targets: an edge takes the level of the coarser block (Tessellate) and
   // moves toward the next level of the block(s) that set it.
+  // A block with nodata never morphs: every nodata sample lies in one of its cells'
+  // full-resolution quads (HoleCells.h), which morphPartErrors freezes, so it gets no
+  // target and its parts are not measured (with side strips, a changed configuration
+  // built its cells once for each of its five parts).
   for (int b : drawn)
   {
     const int m = levels[b];
     const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-    if (blockShape(w, h, m) == BlockShape::Ring)
+    if (blockShape(w, h, m) == BlockShape::Ring && !qt.blockHasNodata[b])
     {
       out.blockTarget[b] = static_cast<int8_t>(nextValidLevel(w, h, m));
     }

@@ -211,7 +211,9 @@ std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int high
 // more than the longest count below maxBlockQuads - kMinBlockQuads, so that the band's
 // inner column (row) and the one before it are valid on every such line: the blocks
 // inside hold no nodata and take any level (their side beside the collar at full
-// resolution, Quadtree::sideAtFullResolution). A longer run is a void or an empty line, which no thin band isolates.
+// resolution where the collar's nodata reaches its border row there,
+// Quadtree::sideAtFullResolutionAt). A longer run is a void or an empty line, which no
+// thin band isolates.
 // 0 where no line starts with nodata. Lines within another side's collar are not counted
 // (a wedge along the west also starts the first columns with nodata seen from the north).
 struct NodataCollar
