@@ -82,6 +82,10 @@ std::size_t blockTriangleCount(
 
 std::size_t drawnTriangleCount(const Quadtree& qt, int block, const BlockConfig& config)
 {
+  if (qt.everySampleNodata(block))
+  {
+    return 0; // every vertex is nodata (the sea of a coastal tile: most of N48W125's blocks)
+  }
   std::vector<GridTriangle> triangles;
   EmitScratch scratch;
   emitBlockGrid(qt, block, config, BlockPart::Whole, triangles, scratch);
