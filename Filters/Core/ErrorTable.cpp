@@ -206,7 +206,10 @@ void fillBlock(const Heightfield& hf, const Quadtree& qt, int block, ErrorTable&
       {
         if (cells)
         {
-          e = std::max(e, partError(hf, qt, block, cfg, BlockPart::Inner, false, scratch));
+          // The cells built above (their nodata quads are the data's holes: not strict).
+          scratch.triangles.clear();
+          emitHoleCellsGrid(*cells, scratch.triangles, scratch.emit);
+          e = std::max(e, trianglesError(hf, scratch.triangles, false));
         }
         else
         {

@@ -334,6 +334,12 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
   sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch, cells);
 }
 
+void emitHoleCellsGrid(const HoleCells& cells, std::vector<GridTriangle>& out, EmitScratch& scratch)
+{
+  GridSink sink(out);
+  drawAreaAroundHoles(sink, cells, scratch.inner, scratch.sides);
+}
+
 void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out)
 {
   GridSink sink(out);

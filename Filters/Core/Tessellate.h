@@ -95,6 +95,10 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
 // The side strip between the polylines sidePolylines left in `lines` (appended): the same
 // triangles as emitBlockGrid's part for that side, without finding the lines again.
 void emitSidePolylinesGrid(const EmitScratch& lines, int side, std::vector<GridTriangle>& out);
+// The cells of a block with nodata (buildHoleCells) as grid points, appended: the same
+// triangles as emitBlockGrid's Inner part at their level, without building them again.
+// `scratch` is for the cells' perimeters; `cells` may be scratch.cells.
+void emitHoleCellsGrid(const HoleCells& cells, std::vector<GridTriangle>& out, EmitScratch& scratch);
 
 // Merged nodes (hierarchical selection): a quadtree node drawn whole, far from the eye,
 // instead of one coarsest block per leaf. It is drawn as a fan from the block corner its
