@@ -128,7 +128,8 @@ int vtkGeoMipMapFilter::RequestData(
     // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
     in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
     in.Engine.setMergeOnPath(this->GeomorphMerges);
-    stats = &in.Engine.update(view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget));
+    stats = &in.Engine.update(
+      view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget), this->BudgetStartTau);
   }
   // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.
   const bool morph = this->Geomorphing && !(this->MaximumGeometricError > 0.0 || !this->Camera) &&
@@ -284,6 +285,21 @@ void vtkGeoMipMapFilter::SetTriangleBudget(vtkIdType budget)
 }
 
 //------------------------------------------------------------------------------
+void vtkGeoMipMapFilter::SetBudgetStartTau(double tau)
+{
+  if (!(std::isfinite(tau) && tau >= 0.0))
+  {
+    vtkErrorMacro("BudgetStartTau " << tau << " must be finite and >= 0 (0: none); kept " << this->BudgetStartTau);
+    return;
+  }
+  if (tau != this->BudgetStartTau)
+  {
+    this->BudgetStartTau = tau;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetPixelError(double tau)
 {
   if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
@@ -301,6 +317,7 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
+  os << indent << "BudgetStartTau: " << this->BudgetStartTau << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "TableCache: " << this->TableCache << "\n";
   os << indent << "TableCacheDirectory: "

@@ -86,6 +86,17 @@ public:
 
   ///@{
   /**
+   * Where a budgeted frame's search for its tau starts (gmm::Engine::update's startTau;
+   * 0, the default: from the coarsest selection). Give it
+   * vtkGeoMipMapMapper::GetLastBudgetStartTau() to reproduce a frame the mapper drew.
+   * Values that are not finite and >= 0 are refused with an error.
+   */
+  void SetBudgetStartTau(double tau);
+  vtkGetMacro(BudgetStartTau, double);
+  ///@}
+
+  ///@{
+  /**
    * Data -> world matrix of the actor (vtkProp3D::GetMatrix()) in view-dependent mode;
    * null (default) is the identity. Any invertible affine matrix.
    */
@@ -204,6 +215,7 @@ protected:
   int ViewportSize[2] = { 1280, 720 };
   double PixelError = 1.0;
   vtkIdType TriangleBudget = 0;
+  double BudgetStartTau = 0.0;
   int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;

@@ -100,6 +100,8 @@ struct vtkGeoMipMapMapper::Internals
 
   // FollowAllocatedRenderTime: this machine's cost per frame, learnt from timed frames.
   gmm::BudgetController Controller;
+  // Where the next budgeted frame's search starts: the last budgeted frame's tau (0: cold).
+  double BudgetStartTau = 0.0;
   // FrontToBack: the drawn blocks nearest first, and their slots for glMultiDrawElements.
   std::vector<int> Order;
   std::vector<GLsizei> Counts;
@@ -352,6 +354,10 @@ bool vtkGeoMipMapMapper::GetTriangleBudgetReached() const
 {
   return this->LastFrameDrawn && this->Internal->Engine.stats().budgetReached;
 }
+double vtkGeoMipMapMapper::GetLastBudgetStartTau() const
+{
+  return this->LastFrameDrawn ? this->Internal->Engine.stats().budgetStartTau : 0.0;
+}
 bool vtkGeoMipMapMapper::GetOverTriangleBudget() const
 {
   return this->LastFrameDrawn && this->Internal->Engine.stats().overBudget;
@@ -415,6 +421,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     in.Terrain = nullptr;
     in.Engine.setTerrain(nullptr);
     in.HasSelection = false;
+    in.BudgetStartTau = 0.0;
     vtkErrorMacro("Cannot use the input image: " << err);
     return false;
   }
@@ -423,6 +430,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     in.Terrain = terrain;
     in.Engine.setTerrain(terrain->GetTerrain());
     in.HasSelection = false; // a frozen selection belongs to the old terrain
+    in.BudgetStartTau = 0.0; // a tau of the old terrain's
     this->LastTerrainBuildTime = terrain->GetBuildTime();
     this->LastTablesFromCache = terrain->GetTableCacheReport().hit;
     this->IndicesDirty = true;
@@ -603,8 +611,12 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
     in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
     in.Engine.setMergeOnPath(this->GeomorphMerges);
-    in.Engine.update(view, this->PixelError, budget);
+    in.Engine.update(view, this->PixelError, budget, budget ? in.BudgetStartTau : 0.0);
     this->LastUpdateTime = SecondsSince(start);
+    if (budget)
+    {
+      in.BudgetStartTau = in.Engine.stats().budgetTau;
+    }
     in.HasSelection = in.Engine.lastError().empty();
     if (!in.HasSelection)
     {

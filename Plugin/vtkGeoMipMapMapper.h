@@ -374,6 +374,14 @@ public:
   vtkGetMacro(LastRenderTime, double);
   ///@}
 
+  /**
+   * Where the last frame's budgeted search started (gmm::Engine::update's startTau): the
+   * tau the budgeted frame before it ended at, so that a moving view's search is short; 0
+   * for a cold start or a frame without a budget. vtkGeoMipMapFilter::SetBudgetStartTau
+   * with this value, the same camera and budget reproduces the frame's triangles.
+   */
+  double GetLastBudgetStartTau() const;
+
   ///@{
   /**
    * Instrumentation: when on, each draw counts the samples that pass the depth test

@@ -185,19 +185,22 @@ private:
 // Phase 1: the finest tau-driven selection (selectLevels) within the budget, by bisection
 // of tau in log space between `lo` and `hi` (whose selection, every block at its coarsest
 // level, fits). Leaves it in `levels`.
-void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
+// Returns the number of selections it ran.
+int bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& visible,
   const std::vector<double>& factor, double lo, double hi, std::size_t budget,
   std::vector<int8_t>& levels, BudgetScratch& s)
 {
+  int trials = 1;
   selectLevels(qt, table, visible, factor, lo, s.trial, s.select);
   if (selectionTriangles(qt, table, visible, s.trial, nullptr) <= budget)
   {
     levels.swap(s.trial);
-    return;
+    return trials;
   }
   for (int k = 0; k < kBudgetBisections && hi > lo * (1.0 + kBudgetTauPrecision); ++k)
   {
     const double mid = std::sqrt(lo * hi);
+    ++trials;
     selectLevels(qt, table, visible, factor, mid, s.trial, s.select);
     if (selectionTriangles(qt, table, visible, s.trial, nullptr) <= budget)
     {
@@ -209,6 +212,7 @@ void bestTauSelection(const Quadtree& qt, const ErrorTable& table, const std::ve
       lo = mid;
     }
   }
+  return trials;
 }
 
 } // namespace
@@ -276,13 +280,15 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
     outcome.stop = BudgetStop::OverBudget;
     return;
   }
+  int trials = 0;
   if (std::isfinite(coarsestTau) && coarsestTau > tau)
   {
     const double lo = std::max(tau, kLowestBudgetTau);
-    bestTauSelection(qt, table, visible, factor, lo, coarsestTau, triangleBudget, levels, scratch);
+    trials = bestTauSelection(qt, table, visible, factor, lo, coarsestTau, triangleBudget, levels, scratch);
   }
 
   refineWithinBudget(qt, table, visible, factor, tau, triangleBudget, 0, 0.0, levels, scratch, outcome);
+  outcome.trials = trials;
 }
 
 void refineWithinBudget(const Quadtree& qt, const ErrorTable& table, const std::vector<int>& drawn,

@@ -24,7 +24,7 @@
 // joined to a coarser neighbour. Refining a node whose error is its own lowers its level;
 // refining one whose error is a strip lowers the level of the neighbour across that strip
 // (the only way to shrink a strip, as fixStrips does for tau). With merged nodes
-// (SelectNodes.h; the engine's default), phase 1 bisects the hierarchical selection
+// (SelectNodes.h; the engine's default), phase 1 searches the hierarchical selection
 // instead (Engine::update) and phase 2 refines its blocks, leaving the merged nodes as
 // they are: it stops when the largest error is a node's or a strip beside one (Merged).
 #pragma once
@@ -46,6 +46,13 @@ namespace gmm
 constexpr double kLowestBudgetTau = 1e-6; // pixels: below it, a selection is exact in practice
 constexpr double kBudgetTauPrecision = 1e-4;
 constexpr int kBudgetBisections = 40;
+// With merged nodes, a frame starts from the previous budgeted frame's tau (Engine::update):
+// kWarmSteps steps away from it, the k-th by a factor kWarmStep^(2^k) (1.02 ... 1.37, 1.85 in
+// all), before the cold start; and the search interpolates the crossing in log-log, each
+// trial at least kInterpolationMargin of the bracket (in log tau) inside it.
+constexpr double kWarmStep = 1.02;
+constexpr int kWarmSteps = 5;
+constexpr double kInterpolationMargin = 0.02;
 
 // Why refinement stopped.
 enum class BudgetStop
@@ -63,8 +70,10 @@ struct BudgetOutcome
   // (a DEM one quad wide counts its nodata's triangles), so the drawn count is <= the budget
   // unless OverBudget.
   std::size_t triangles = 0;
-  std::size_t coarsestTriangles = 0; // the starting selection's count
+  std::size_t coarsestTriangles = 0; // the coarsest selection's count (0: a warm start did not need it)
   int refinements = 0;               // levels lowered by one step
+  double tau = 0.0; // with merged nodes (Engine::update), the tau whose selection phase 1 kept
+  int trials = 0;   // whole selections phase 1 ran (its cost)
   BudgetStop stop = BudgetStop::Tau;
 };
 

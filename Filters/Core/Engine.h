@@ -40,6 +40,11 @@ struct FrameStats
   std::size_t triangleBudget = 0; // the budget in force
   bool budgetReached = false;     // the budget, not tau, stopped refinement
   bool overBudget = false;        // the coarsest selection alone exceeds it (drawn anyway)
+  // With merged nodes: the tau whose selection phase 1 kept (the next frame's natural start,
+  // update's startTau), and the start this frame was given; 0 when none.
+  double budgetTau = 0.0;
+  double budgetStartTau = 0.0;
+  int budgetTrials = 0; // whole selections the search ran (BudgetSelection.h's phase 1)
 };
 
 // "" when `scale` is a usable vertical exaggeration (finite and > 0), else the reason: the
@@ -70,7 +75,13 @@ public:
   // stops it, so maxScreenError is the smallest certified error the budget allows. 0 = no
   // budget, exactly update(view, tau). If even the coarsest selection exceeds the budget
   // it is drawn and stats().overBudget says so.
-  const FrameStats& update(const View& view, double tau, std::size_t triangleBudget);
+  // startTau (> 0; with merged nodes) starts phase 1's search there instead of at the
+  // coarsest selection: the previous frame's stats().budgetTau makes a moving view's search
+  // two or three times shorter. The search then finds the boundary nearest the start,
+  // which may differ from the cold search's where the count is not monotone in tau (both
+  // fit and are certified); a frame is a function of its arguments, startTau included, so
+  // another engine given the same start draws the same triangles.
+  const FrameStats& update(const View& view, double tau, std::size_t triangleBudget, double startTau = 0.0);
 
   // Vertical exaggeration: the drawn surface is z0 + scale * height. Culling, the bound and
   // view-independent errors all see the scaled surface; the tables are not rebuilt (errors
@@ -151,8 +162,8 @@ private:
   // Budgeted frames with merged nodes: phase 1 of BudgetSelection.h on the hierarchical
   // selection, then refineWithinBudget on its blocks. False (nothing selected) when even
   // the coarsest hierarchical selection is over the budget.
-  bool selectHierarchicallyWithinBudget(
-    const View& view, double tau, std::size_t triangleBudget, BudgetOutcome& outcome);
+  bool selectHierarchicallyWithinBudget(const View& view, double tau, std::size_t triangleBudget,
+    double startTau, BudgetOutcome& outcome);
   // Triangles and largest projected certified error (pixels) of the current hierarchical
   // selection (blocks and merged nodes).
   std::size_t hierarchicalTriangles() const;

@@ -11,7 +11,7 @@
 namespace gmm
 {
 
-const FrameStats& Engine::update(const View& view, double tau, std::size_t triangleBudget)
+const FrameStats& Engine::update(const View& view, double tau, std::size_t triangleBudget, double startTau)
 {
   if (triangleBudget == 0)
   {
@@ -26,12 +26,14 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
   }
   const Terrain& t = *terrain_;
   BudgetOutcome outcome;
-  if (mergedNodes_ && selectHierarchicallyWithinBudget(view, tau, triangleBudget, outcome))
+  int hierarchicalTrials = 0;
+  if (mergedNodes_ && selectHierarchicallyWithinBudget(view, tau, triangleBudget, startTau, outcome))
   {
     finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
   }
   else
   {
+    hierarchicalTrials = outcome.trials; // of a hierarchical search that gave up
     cullAndProject(view);
     selectLevelsWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, levels_,
       budgetScratch_, outcome);
@@ -40,6 +42,9 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
   stats_.triangleBudget = triangleBudget;
   stats_.budgetReached = outcome.stop != BudgetStop::Tau;
   stats_.overBudget = outcome.stop == BudgetStop::OverBudget;
+  stats_.budgetTau = outcome.tau;
+  stats_.budgetTrials = outcome.trials + hierarchicalTrials;
+  stats_.budgetStartTau = startTau;
   return stats_;
 }
 
@@ -84,15 +89,17 @@ std::size_t Engine::hierarchicalTriangles() const
     mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor).triangles;
 }
 
-bool Engine::selectHierarchicallyWithinBudget(
-  const View& view, double tau, std::size_t triangleBudget, BudgetOutcome& outcome)
+bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
+  std::size_t triangleBudget, double startTau, BudgetOutcome& outcome)
 {
   const Terrain& t = *terrain_;
   const glm::dmat4 toWorld = heightfieldToWorld(view, t.hf.z0, heightScale_);
   const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
   const BoxProjector projector(view, toWorld, metric_);
   const FactorMemo memo(nodeScratch_, &projector); // every trial below is of this view
+  int trials = 0;
   auto select = [&](double x) {
+    ++trials;
     selectHierarchically(&frustum, &projector, x);
     return hierarchicalTriangles();
   };
@@ -106,64 +113,116 @@ bool Engine::selectHierarchicallyWithinBudget(
     best.merged = nodeSelection_.merged;
     best.mergedFactor = nodeSelection_.mergedFactor;
   };
-  // Phase 1 (BudgetSelection.h) on the hierarchical selection: the coarsest one (every
-  // mergeable node drawn whole, tau clamped to the largest budget), then the finest tau
-  // whose selection fits, by bisection in log space.
-  const double most = std::numeric_limits<double>::max();
-  outcome = BudgetOutcome();
-  outcome.coarsestTriangles = select(most);
-  if (outcome.coarsestTriangles > triangleBudget)
-  {
-    // Nodes drawn whole reach outside the view, so a finer hierarchical selection can have
-    // fewer triangles than this one; the block-by-block search decides (and says when even
-    // one quad per block is over budget).
-    return false;
-  }
-  keep();
-  // Merging a node can add triangles (its neighbours' strips split it, its fan has more
-  // points than its blocks at their levels, or it reaches outside the view), so the count is
-  // not monotone in tau: a bisection alone can end far above a tau that fits. So a sweep
-  // halves tau from the coarsest selection's own error (above it nothing changes) down to
-  // the lowest, or until the count is twice the budget, keeping the finest that fits; then
-  // a bisection between it and the next.
+  // Phase 1 (BudgetSelection.h) on the hierarchical selection: the finest tau whose
+  // selection fits, bracketed, then searched to within kBudgetTauPrecision. A trial's
+  // selection is the same for every tau between its own certified error and tau (each of
+  // its choices compares an error with tau), so a fitting trial moves the upper bound down
+  // to its error.
   const double lowest = std::max(tau, kLowestBudgetTau);
-  double fit = std::max(hierarchicalError(), lowest), below = -1.0;
-  for (double x = fit; x > lowest;)
-  {
-    x = std::max(0.5 * x, lowest);
+  double lo = -1.0, hi = -1.0; // the coarsest failing tau so far, the finest fitting one
+  std::size_t hiCount = 0, failCount = 0, loCount = 0; // their counts (and the last failure's)
+  auto trial = [&](double x) {
     const std::size_t n = select(x);
-    if (n <= triangleBudget)
+    if (n > triangleBudget)
     {
-      fit = x;
-      below = -1.0;
+      failCount = n;
+    }
+    else
+    {
       keep();
-      continue;
+      hi = std::min(x, std::max(hierarchicalError(), lowest));
+      hiCount = n;
     }
-    if (below < 0.0)
+    return n;
+  };
+  auto closed = [&]() { return hi > 0.0 && (hi <= lowest || lo > 0.0); };
+  outcome = BudgetOutcome();
+  // Warm start: at startTau (the previous frame's tau), then steps away from it that double in
+  // log space (kWarmStep, kWarmStep^2, ...) until a bracket closes. A view that moved a
+  // little needs two or three trials; one that moved far falls back to the cold start.
+  if (startTau > 0.0 && std::isfinite(startTau))
+  {
+    double x = std::max(startTau, lowest);
+    const bool fitted = trial(x) <= triangleBudget;
+    if (!fitted)
     {
-      below = x; // the first failure under the finest fit so far
+      lo = x;
+      loCount = failCount;
     }
-    if (n > 2 * triangleBudget)
+    for (int k = 0; k < kWarmSteps && !closed(); ++k)
     {
-      break; // far over: the count's dips are smaller than this
+      const double step = std::pow(kWarmStep, std::ldexp(1.0, k));
+      x = fitted ? std::max(hi / step, lowest) : x * step;
+      if (trial(x) > triangleBudget)
+      {
+        lo = x;
+        loCount = failCount;
+      }
     }
   }
-  if (below > 0.0)
+  if (!closed())
   {
-    double lo = below, hi = fit;
-    for (int k = 0; k < kBudgetBisections && hi > lo * (1.0 + kBudgetTauPrecision); ++k)
+    // Cold start: the coarsest selection (every mergeable node drawn whole, tau clamped to
+    // the largest budget), then tau halved from its error (above it nothing changes) down
+    // to the lowest, or until the count is twice the budget, keeping the finest that fits.
+    // Merging a node can add triangles (its neighbours' strips split it, its fan has more
+    // points than its blocks at their levels, or it reaches outside the view), so the count
+    // is not monotone in tau: a bisection alone can end far above a tau that fits.
+    lo = hi = -1.0;
+    outcome.coarsestTriangles = trial(std::numeric_limits<double>::max());
+    if (outcome.coarsestTriangles > triangleBudget)
     {
-      const double mid = std::sqrt(lo * hi);
-      if (select(mid) <= triangleBudget)
+      // Nodes drawn whole reach outside the view, so a finer hierarchical selection can
+      // have fewer triangles than this one; the block-by-block search decides (and says
+      // when even one quad per block is over budget).
+      outcome.trials = trials;
+      return false;
+    }
+    for (double x = hi; x > lowest;)
+    {
+      x = std::max(0.5 * std::min(x, hi), lowest);
+      const std::size_t n = trial(x);
+      if (n <= triangleBudget)
       {
-        hi = mid;
-        keep();
+        lo = -1.0; // a failure above a finer fit no longer bounds it
       }
-      else
+      else if (lo < 0.0)
       {
-        lo = mid;
+        lo = x; // the first failure under the finest fit so far
+        loCount = failCount;
+      }
+      if (n > 2 * triangleBudget)
+      {
+        break; // far over: the count's dips are smaller than this
       }
     }
+  }
+  // Then the crossing, interpolated: the count is close to a power of tau between two
+  // trials (linear in log-log), so the next trial is where that line meets the budget;
+  // after two trials on the same side, the middle instead (a step of the count, or a dip,
+  // would stall the interpolation). The count moves by a few dozen triangles between
+  // neighbouring selections, so this ends where bisection would, in fewer trials.
+  int sameSide = 0;
+  bool lastFitted = false;
+  for (int k = 0; k < kBudgetBisections && lo > 0.0 && hi > lo * (1.0 + kBudgetTauPrecision); ++k)
+  {
+    double share = 0.5;
+    const double countLo = std::log(static_cast<double>(loCount));
+    const double countHi = std::log(static_cast<double>(std::max<std::size_t>(hiCount, 1)));
+    if (sameSide < 2 && countLo > countHi)
+    {
+      share = std::clamp((countLo - std::log(static_cast<double>(triangleBudget))) / (countLo - countHi),
+        kInterpolationMargin, 1.0 - kInterpolationMargin);
+    }
+    const double x = lo * std::pow(hi / lo, share);
+    const bool fitted = trial(x) <= triangleBudget;
+    if (!fitted)
+    {
+      lo = x;
+      loCount = failCount;
+    }
+    sameSide = k > 0 && fitted == lastFitted ? sameSide + 1 : 0;
+    lastFitted = fitted;
   }
   levels_.swap(best.levels);
   factor_.swap(best.factor);
@@ -176,6 +235,8 @@ bool Engine::selectHierarchicallyWithinBudget(
   refineWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, fixed.triangles,
     fixed.error, levels_, budgetScratch_, outcome);
   outcome.coarsestTriangles = coarsest;
+  outcome.tau = hi;
+  outcome.trials = trials;
   return true;
 }
 

@@ -137,7 +137,9 @@ def screen_error(image, ren, mesh, size):
     return e.GetMaximumError(), e.GetNumberOfUncoveredSamples() / max(e.GetNumberOfSamplesInView(), 1)
 
 
-def lod_mesh(image, ren, size, tau, budget):
+def lod_mesh(image, ren, size, tau, budget, start=0.0):
+    """The filter's mesh for the camera; `start`: the mapper's GetLastBudgetStartTau() of
+    the frame to reproduce (its budgeted search started there)."""
     import geomipmap
 
     f = geomipmap.vtkGeoMipMapFilter()
@@ -146,6 +148,7 @@ def lod_mesh(image, ren, size, tau, budget):
     f.SetViewportSize(*size)
     f.SetPixelError(tau)
     f.SetTriangleBudget(budget)
+    f.SetBudgetStartTau(start)
     f.Update()
     return f
 
@@ -191,6 +194,7 @@ def frame_rate_mode(image, flight, args, size, out):
     s.win.SetDesiredUpdateRate(args.fps)
     s.frame(flight, 0)  # tables and uploads: not a frame of the flight
     times, mapper_times, budgets, errs, tris, measured, ratio = [], [], [], [], [], [], []
+    starts = []
     steered = []
     exact_early = over = 0
     for k in range(len(flight)):
@@ -210,6 +214,7 @@ def frame_rate_mode(image, flight, args, size, out):
                   file=sys.stderr)
         mapper_times.append(m.GetLastRenderTime())
         budgets.append(m.GetTriangleBudgetInForce())
+        starts.append(m.GetLastBudgetStartTau())
         errs.append(m.GetMaximumScreenSpaceError())
         tris.append(m.GetNumberOfRenderedTriangles())
         steered.append(m.GetTriangleBudgetReached() and not m.GetOverTriangleBudget())
@@ -217,7 +222,7 @@ def frame_rate_mode(image, flight, args, size, out):
     # run and a rasterisation of the mesh) slowed the frame after it by up to 1.5x.
     for k in measured_frames(flight, args):
         flight.apply(s.ren, k)
-        f = lod_mesh(image, s.ren, size, 0.0, budgets[k])
+        f = lod_mesh(image, s.ren, size, 0.0, budgets[k], starts[k])
         assert f.GetOutput().GetNumberOfPolys() == tris[k], "filter mesh is not the drawn one"
         e, _ = screen_error(image, s.ren, f.GetOutput(), size)
         measured.append(e)
@@ -308,6 +313,7 @@ def fixed_budget_mode(image, flight, args, size, out):
     a.SetMapper(m)
     s = Scene(image, size, a, args.fps)
     over, coarsest_over, worst, rows, times, drawn, certified = 0, 0, 0.0, [], [], [], []
+    starts = []
     for k in range(len(flight)):
         times.append(s.frame(flight, k))
         n = m.GetNumberOfRenderedTriangles()
@@ -316,6 +322,7 @@ def fixed_budget_mode(image, flight, args, size, out):
         if not m.GetOverTriangleBudget():
             worst = max(worst, n / args.budget)
         drawn.append(None if m.GetOverTriangleBudget() else n)
+        starts.append(m.GetLastBudgetStartTau())
         certified.append(m.GetMaximumScreenSpaceError())
     # Measured after the flight (see frame_rate_mode), so that the frame times above are
     # those of a flight.
@@ -324,7 +331,7 @@ def fixed_budget_mode(image, flight, args, size, out):
             continue
         flight.apply(s.ren, k)
         n, eb = drawn[k], certified[k]
-        fb = lod_mesh(image, s.ren, size, 0.0, args.budget)
+        fb = lod_mesh(image, s.ren, size, 0.0, args.budget, starts[k])
         assert fb.GetOutput().GetNumberOfPolys() == n, "filter mesh is not the drawn one"
         mb, _ = screen_error(image, s.ren, fb.GetOutput(), size)
         lo, hi = 1e-3, 1e4  # the finest tau-driven frame within the budget

@@ -55,6 +55,8 @@ def budget_mesh(budget):
     f.SetPixelError(TAU)
     f.SetBlockSize(BLOCK)
     f.SetTriangleBudget(budget)
+    # Where the mapper's budgeted search started (its previous budgeted frame's tau).
+    f.SetBudgetStartTau(mapper.GetLastBudgetStartTau())
     f.Update()
     return f.GetOutput()
 
@@ -102,6 +104,15 @@ win.Render()
 check(mapper.GetOverTriangleBudget(), "budget 1: even the coarsest selection is over it")
 check(mapper.GetNumberOfRenderedTriangles() == 2 * mapper.GetNumberOfVisibleBlocks(),
       "budget 1: every visible block drawn as one quad")
+
+check(mapper.GetLastBudgetStartTau() > 0.0,
+      "a budgeted frame after another starts its search at that frame's tau")
+f = geomipmap.vtkGeoMipMapFilter()
+ferrors = ErrorCatcher(f)
+f.SetBudgetStartTau(float("nan"))
+f.SetBudgetStartTau(-1.0)
+check(f.GetBudgetStartTau() == 0.0 and len(ferrors.messages) == 2,
+      f"the filter refuses a start tau that is not finite and >= 0 ({ferrors.messages})")
 
 errors = ErrorCatcher(mapper)
 mapper.SetTriangleBudget(-5)
