@@ -73,6 +73,7 @@ private:
   void compact();
 
   std::vector<uint32_t> indices_;
+  std::vector<uint32_t> spare_; // the list before the last compaction (its capacity reused)
   std::vector<Slot> slots_;
   std::multimap<std::size_t, std::size_t> free_; // capacity -> offset of unused slots
   std::size_t end_ = 0;   // first index after the last slot (the rest is reserve)
