@@ -140,6 +140,14 @@ void IndexArena::compact()
   end_ = packed.size();
   packed.resize(wholeTriangles(end_ + end_ / 4), kRestartIndex);
   indices_.swap(packed); // the old list is the next compaction's
+  if (spare_.capacity() > 4 * indices_.size())
+  {
+    // Not a list that shrank this much (a full-resolution frame, then a coarse one): the
+    // arena holds at most one list beside its own, of at most four times its size. (Budget
+    // churn over Rainier compacts lists of 1.6x the packed size, whose capacity the
+    // vector's growth made up to twice that.)
+    std::vector<uint32_t>().swap(spare_);
+  }
   free_.clear();
   rewritten_ = true;
   dirty_.clear();

@@ -48,6 +48,8 @@ public:
   uint64_t version() const { return version_; }
   // Otherwise the ranges that changed, sorted and disjoint.
   const std::vector<Range>& dirtyRanges() const { return dirty_; }
+  // Indices' worth of memory held: the list's and the spare the next compaction packs into.
+  std::size_t heldIndices() const { return indices_.capacity() + spare_.capacity(); }
   // Where block `block`'s triangles are in indices(): [begin, end), empty when not drawn.
   // What a renderer draws to order blocks (glMultiDrawElements) without re-uploading.
   Range slot(int block) const
