@@ -42,7 +42,8 @@ namespace gmm
 
 // Phase 1 bisects tau in log space from max(tau, kLowestBudgetTau) up, until the bounds are
 // within kBudgetTauPrecision, in at most kBudgetBisections steps (24 halve a ratio of 1e20
-// to within 3e-6 in log: 0.0003 %). With merged nodes a sweep comes first (Engine::update).
+// to within 3e-6 in log: 0.0003 %). With merged nodes a warm start or a sweep comes first,
+// and the steps interpolate (Engine::update).
 constexpr double kLowestBudgetTau = 1e-6; // pixels: below it, a selection is exact in practice
 constexpr double kBudgetTauPrecision = 1e-4;
 constexpr int kBudgetBisections = 40;
