@@ -273,10 +273,10 @@ void selectLevelsWithinBudget(const Quadtree& qt, const ErrorTable& table,
       coarsestTau = std::max(coarsestTau, table.own(b, levels[b]) * factor[b]);
     }
   }
-  outcome.coarsestTriangles = selectionTriangles(qt, table, visible, levels, nullptr);
-  if (outcome.coarsestTriangles > triangleBudget)
+  const std::size_t coarsest = selectionTriangles(qt, table, visible, levels, nullptr);
+  if (coarsest > triangleBudget)
   {
-    outcome.triangles = outcome.coarsestTriangles;
+    outcome.triangles = coarsest;
     outcome.stop = BudgetStop::OverBudget;
     return;
   }

@@ -71,8 +71,7 @@ struct BudgetOutcome
   // (a DEM one quad wide counts its nodata's triangles), so the drawn count is <= the budget
   // unless OverBudget.
   std::size_t triangles = 0;
-  std::size_t coarsestTriangles = 0; // the coarsest selection's count (0: a warm start did not need it)
-  int refinements = 0;               // levels lowered by one step
+  int refinements = 0; // levels lowered by one step
   double tau = 0.0; // with merged nodes (Engine::update), the tau whose selection phase 1 kept
   int trials = 0;   // whole selections phase 1 ran (its cost)
   BudgetStop stop = BudgetStop::Tau;

@@ -120,14 +120,10 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   // to its error.
   const double lowest = std::max(tau, kLowestBudgetTau);
   double lo = -1.0, hi = -1.0; // the coarsest failing tau so far, the finest fitting one
-  std::size_t hiCount = 0, failCount = 0, loCount = 0; // their counts (and the last failure's)
+  std::size_t loCount = 0, hiCount = 0; // their counts
   auto trial = [&](double x) {
     const std::size_t n = select(x);
-    if (n > triangleBudget)
-    {
-      failCount = n;
-    }
-    else
+    if (n <= triangleBudget)
     {
       keep();
       hi = std::min(x, std::max(hierarchicalError(), lowest));
@@ -143,20 +139,22 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   if (startTau > 0.0 && std::isfinite(startTau))
   {
     double x = std::max(startTau, lowest);
-    const bool fitted = trial(x) <= triangleBudget;
+    const std::size_t first = trial(x);
+    const bool fitted = first <= triangleBudget;
     if (!fitted)
     {
       lo = x;
-      loCount = failCount;
+      loCount = first;
     }
     for (int k = 0; k < kWarmSteps && !closed(); ++k)
     {
       const double step = std::pow(kWarmStep, std::ldexp(1.0, k));
       x = fitted ? std::max(hi / step, lowest) : x * step;
-      if (trial(x) > triangleBudget)
+      const std::size_t n = trial(x);
+      if (n > triangleBudget)
       {
         lo = x;
-        loCount = failCount;
+        loCount = n;
       }
     }
   }
@@ -169,8 +167,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     // points than its blocks at their levels, or it reaches outside the view), so the count
     // is not monotone in tau: a bisection alone can end far above a tau that fits.
     lo = hi = -1.0;
-    outcome.coarsestTriangles = trial(std::numeric_limits<double>::max());
-    if (outcome.coarsestTriangles > triangleBudget)
+    if (trial(std::numeric_limits<double>::max()) > triangleBudget)
     {
       // Nodes drawn whole reach outside the view, so a finer hierarchical selection can
       // have fewer triangles than this one; the block-by-block search decides (and says
@@ -189,7 +186,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
       else if (lo < 0.0)
       {
         lo = x; // the first failure under the finest fit so far
-        loCount = failCount;
+        loCount = n;
       }
       if (n > 2 * triangleBudget)
       {
@@ -215,11 +212,12 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
         kInterpolationMargin, 1.0 - kInterpolationMargin);
     }
     const double x = lo * std::pow(hi / lo, share);
-    const bool fitted = trial(x) <= triangleBudget;
+    const std::size_t n = trial(x);
+    const bool fitted = n <= triangleBudget;
     if (!fitted)
     {
       lo = x;
-      loCount = failCount;
+      loCount = n;
     }
     sameSide = k > 0 && fitted == lastFitted ? sameSide + 1 : 0;
     lastFitted = fitted;
@@ -231,10 +229,8 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   nodeSelection_.mergedFactor.swap(best.mergedFactor);
   // Phase 2 on its blocks; the merged nodes stay.
   const MergedPart fixed = mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor);
-  const std::size_t coarsest = outcome.coarsestTriangles;
   refineWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, fixed.triangles,
     fixed.error, levels_, budgetScratch_, outcome);
-  outcome.coarsestTriangles = coarsest;
   outcome.tau = hi;
   outcome.trials = trials;
   return true;
