@@ -178,12 +178,12 @@ std::string CameraToView(vtkCamera* camera, vtkMatrix4x4* dataToWorld, int width
   return gmm::validateView(view);
 }
 
-bool AcceptPixelError(vtkObject* self, double tau, double& current)
+bool AcceptPixelError(vtkObject* self, double tau, double& current, const char* what)
 {
   if (!(tau >= 0.0 && std::isfinite(tau)))
   {
     vtkErrorWithObjectMacro(
-      self, "PixelError must be a finite number >= 0, got " << tau << "; keeping " << current);
+      self, << what << " must be a finite number >= 0, got " << tau << "; keeping " << current);
     return false;
   }
   if (tau == current)

@@ -54,11 +54,13 @@ GEOMIPMAPFILTERS_EXPORT std::string CameraToView(vtkCamera* camera, vtkMatrix4x4
   int width, int height, gmm::View& view);
 
 /**
- * The SetPixelError rule of the mapper and the filter: a finite tau >= 0 is stored in
- * `current` and true is returned when it differs (the caller then marks itself modified);
- * anything else is refused with an error reported by `self`, and `current` is kept.
+ * The rule of every tau in pixels the mapper and the filter take (SetPixelError, the
+ * filter's SetBudgetStartTau): a finite tau >= 0 is stored in `current` and true is
+ * returned when it differs (the caller then marks itself modified); anything else is
+ * refused with an error reported by `self` naming `what`, and `current` is kept.
  */
-GEOMIPMAPFILTERS_EXPORT bool AcceptPixelError(vtkObject* self, double tau, double& current);
+GEOMIPMAPFILTERS_EXPORT bool AcceptPixelError(
+  vtkObject* self, double tau, double& current, const char* what = "PixelError");
 
 /**
  * Memory, in bytes, this machine can give a new allocation now (Linux: MemAvailable of

@@ -287,14 +287,8 @@ void vtkGeoMipMapFilter::SetTriangleBudget(vtkIdType budget)
 //------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetBudgetStartTau(double tau)
 {
-  if (!(std::isfinite(tau) && tau >= 0.0))
+  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->BudgetStartTau, "BudgetStartTau"))
   {
-    vtkErrorMacro("BudgetStartTau " << tau << " must be finite and >= 0 (0: none); kept " << this->BudgetStartTau);
-    return;
-  }
-  if (tau != this->BudgetStartTau)
-  {
-    this->BudgetStartTau = tau;
     this->Modified();
   }
 }

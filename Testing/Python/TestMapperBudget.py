@@ -111,7 +111,8 @@ f = geomipmap.vtkGeoMipMapFilter()
 ferrors = ErrorCatcher(f)
 f.SetBudgetStartTau(float("nan"))
 f.SetBudgetStartTau(-1.0)
-check(f.GetBudgetStartTau() == 0.0 and len(ferrors.messages) == 2,
+check(f.GetBudgetStartTau() == 0.0 and len(ferrors.messages) == 2
+      and all("BudgetStartTau must be a finite number >= 0" in e for e in ferrors.messages),
       f"the filter refuses a start tau that is not finite and >= 0 ({ferrors.messages})")
 
 errors = ErrorCatcher(mapper)
