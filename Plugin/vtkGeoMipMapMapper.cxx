@@ -611,7 +611,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
     in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
     in.Engine.setMergeOnPath(this->GeomorphMerges);
-    in.Engine.update(view, this->PixelError, budget, budget ? in.BudgetStartTau : 0.0);
+    in.Engine.update(view, this->PixelError, budget, in.BudgetStartTau); // no budget: ignored
     this->LastUpdateTime = SecondsSince(start);
     if (budget)
     {
