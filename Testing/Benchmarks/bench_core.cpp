@@ -9,6 +9,8 @@
 //   GEOMIPMAP_BENCH_THREADS=1 ...                                  # table build threads (0 = all)
 //
 // BM_LodFlightFar20km: the same flight with the far plane at 20 km.
+// BM_BudgetFlight / BM_BudgetFlightVarying: the mapper's per-frame work in a budgeted frame
+// (runBudgetFlight below), the first kBudgetFlightFrames frames of the flight.
 // BM_BlockSizeSweep4097 / BM_BlockSizeSweepMapperDefault4097: the whole-DEM flight at 4097^2
 // for leaf sizes 16 .. 256, engine default and mapper default.
 // BM_LodFlightMapperDefault: the whole-DEM flight with the CPU work the mapper does per frame
@@ -42,6 +44,7 @@ constexpr double kSpacing = 30.0;
 constexpr int kFlightFrames = 2000;
 constexpr double kStep = 5.0;      // metres per frame
 constexpr double kAltitude = 200.0; // metres above the ground under/ahead of the camera
+constexpr int kBudgetFlightFrames = 400; // frames of BM_BudgetFlight (from the flight's start)
 // Largest DEM whose full-resolution index list is built (16385^2: 6.4 GB of indices).
 constexpr int kMaxFullResolutionSize = 16385;
 
@@ -229,6 +232,54 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   e.setMorphRange(0.0); // the scene's engine is shared by the other registrations
 }
 
+// BM_BudgetFlight: the mapper's CPU work per frame in a budgeted frame (issue #14): the same
+// flight with tau 0 and a triangle budget, each frame's search started at the previous
+// frame's tau (FrameStats::budgetTau, as the mapper does), geomorphing's level path and
+// computeMorph as in BM_LodFlightMapperDefault. The budget is held, or (`varying`) moved by
+// +-15 % every 8 frames as a frame-rate controller moves it. Counters: selections a frame
+// (the search's trials) and the certified error reached.
+void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::size_t budget, bool varying)
+{
+  Scene& s = scene(size, blockQuads);
+  gmm::Engine& e = *s.engine;
+  e.setMorphRange(gmm::kDefaultMorphRange);
+  e.setMergeOnPath(false);
+  gmm::MorphCache morphCache;
+  gmm::MorphFrame morph;
+  std::size_t frame = 0, triangles = 0, trials = 0;
+  double totalUs = 0, errorSum = 0, startTau = 0;
+  auto budgetOf = [&](std::size_t f) {
+    if (!varying)
+      return budget;
+    const double scale[] = { 1.0, 1.15, 1.0, 0.85 };
+    return static_cast<std::size_t>(budget * scale[(f / 8) % 4]);
+  };
+  e.update(s.flight[0], 0.0, budgetOf(0), 0.0); // warm-up, as runFlight
+  startTau = e.stats().budgetTau;
+  gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 0.0, morphCache, morph,
+    e.morphRamp(), &e.drawnBlocks());
+  for (auto _ : state)
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    const gmm::FrameStats& st = e.update(s.flight[frame % s.flight.size()], 0.0, budgetOf(frame), startTau);
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 0.0, morphCache, morph,
+      e.morphRamp(), &e.drawnBlocks());
+    benchmark::DoNotOptimize(morph.blockT.data());
+    totalUs += seconds(t0) * 1e6;
+    startTau = st.budgetTau;
+    triangles += st.triangles;
+    trials += static_cast<std::size_t>(st.budgetTrials);
+    errorSum += st.maxScreenError;
+    ++frame;
+  }
+  const double n = static_cast<double>(frame);
+  state.counters["frame_us"] = totalUs / n;
+  state.counters["triangles"] = triangles / n;
+  state.counters["selections"] = trials / n;
+  state.counters["certified_px_mean"] = errorSum / n;
+  e.setMorphRange(0.0);
+}
+
 void BM_FullResolutionIndices(benchmark::State& state, int blockQuads)
 {
   const int size = static_cast<int>(state.range(0));
@@ -275,6 +326,13 @@ int main(int argc, char** argv)
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
+    for (bool varying : { false, true })
+      benchmark::RegisterBenchmark(
+        ((varying ? "BM_BudgetFlightVarying/" : "BM_BudgetFlight/") + std::to_string(s)).c_str(),
+        [s, block, varying](benchmark::State& st) { runBudgetFlight(st, s, block, 100000, varying); })
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime()
+        ->Iterations(kBudgetFlightFrames); // the same frames in every run: errors compare
     if (s > kMaxFullResolutionSize)
       continue;
     benchmark::RegisterBenchmark(("BM_FullResolutionIndices/" + std::to_string(s)).c_str(),
