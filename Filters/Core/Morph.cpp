@@ -373,10 +373,21 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       edges[2]->target, edges[3]->target };
     if (key != state.key)
     {
-      const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
-      updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, changedMorphParts(state.key, key),
-        state.errors, cache.scratch);
-      state.key = key;
+      if (key == state.previousKey)
+      {
+        std::swap(state.key, state.previousKey); // part errors depend on the key only
+        std::swap(state.errors, state.previousErrors);
+      }
+      else
+      {
+        state.previousKey = state.key;
+        state.previousErrors = state.errors;
+        const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target,
+          edges[3]->target };
+        updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, changedMorphParts(state.key, key),
+          state.errors, cache.scratch);
+        state.key = key;
+      }
     }
     const PartErrors& pe = state.errors;
     morphs[k] = 1;

@@ -9,6 +9,9 @@
 //   draws): every frame's morphed surface measures within tau by the independent measure,
 //   and the largest screen displacement between consecutive frames (popping, measured at
 //   every sample in view) is several times smaller than with the plain certificate factors.
+// - CachedPartErrorsAreTheirKeysAlongBudgetedFrames: budgeted frames whose blocks go back
+//   and forth between two keys; each drawn block's cached part errors equal its key's,
+//   computed from nothing.
 #include "CoreTestUtil.h"
 #include "Engine.h"
 #include "Levels.h"
@@ -19,10 +22,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
+#include <map>
 #include <random>
+#include <vector>
 
 using namespace gmmtest;
 
@@ -352,6 +359,67 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
     compared += !e.drawnBlocks().empty();
   }
   EXPECT_GE(compared, 60) << "too few frames drew anything";
+}
+
+TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
+{
+  // computeMorph keeps each drawn block's part errors for its key and for the key before
+  // (MorphBlockState), and takes the latter back when a block returns to it, as budgeted
+  // frames make the blocks at the budget's margin do. After every frame, each drawn
+  // block's kept errors must be those of its key, computed from nothing.
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 257, 30.0, 11, 900.0, 1);
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+  e.setMorphRange(gmm::kDefaultMorphRange);
+  gmm::MorphCache cache;
+  gmm::MorphFrame frame;
+  gmm::EmitScratch scratch;
+  std::map<int, std::vector<std::array<int8_t, 10>>> history; // keys per block, by frame
+  double startTau = 0.0;
+  int returns = 0, checked = 0;
+  for (int f = 0; f < 60; ++f)
+  {
+    gmm::View v;
+    v.eye = { 2000.0 + 25.0 * f, 1500.0 + 15.0 * f, 1500.0 };
+    v.forward = { 0.6, 0.6, -0.53 };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 50.0;
+    v.nearDistance = 1.0;
+    v.farDistance = 1e5;
+    const std::size_t budget = f % 2 ? 9000 : 10000; // the margin moves every frame
+    e.update(v, 0.0, budget, startTau);
+    ASSERT_EQ(e.lastError(), "");
+    startTau = e.stats().budgetTau;
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 0.0, cache, frame,
+      e.morphRamp(), &e.drawnBlocks());
+    for (int b : e.drawnBlocks())
+    {
+      const int slot = cache.slotOf[b];
+      ASSERT_GE(slot, 0);
+      const gmm::MorphBlockState& st = cache.slots[slot];
+      const std::array<int8_t, 10>& k = st.key;
+      if (k[0] < 0)
+      {
+        continue; // not morphing this frame (no errors kept)
+      }
+      std::vector<std::array<int8_t, 10>>& keys = history[b];
+      returns += keys.size() >= 2 && keys.back() != k && keys[keys.size() - 2] == k;
+      keys.push_back(k);
+      gmm::BlockConfig cfg;
+      cfg.level = k[0];
+      for (int s = 0; s < 4; ++s)
+        cfg.edgeLevel[s] = k[1 + s];
+      const gmm::PartErrors fresh = gmm::morphPartErrors(e.heightfield(), e.quadtree(), b, cfg, k[5],
+        { k[6], k[7], k[8], k[9] }, scratch);
+      ASSERT_EQ(std::memcmp(st.errors.inner, fresh.inner, sizeof fresh.inner), 0) << "frame " << f << " block " << b;
+      ASSERT_EQ(std::memcmp(st.errors.side, fresh.side, sizeof fresh.side), 0) << "frame " << f << " block " << b;
+      ASSERT_EQ(st.errors.innerFrozen, fresh.innerFrozen) << "frame " << f << " block " << b;
+      ASSERT_EQ(st.errors.sideFrozen, fresh.sideFrozen) << "frame " << f << " block " << b;
+      ++checked;
+    }
+  }
+  std::printf("[ morph cache ] %d drawn blocks checked, %d went back to the key before\n", checked, returns);
+  EXPECT_GE(returns, 20) << "the flight does not exercise the key before";
 }
 
 TEST(MorphRamp, FloorIsBelowThePath)
