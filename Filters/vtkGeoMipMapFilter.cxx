@@ -137,8 +137,8 @@ int vtkGeoMipMapFilter::RequestData(
   if (morph)
   {
     gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
-      in.Engine.pixelFactors(), this->PixelError, in.MorphCache, in.Morph, in.Engine.morphRamp(),
-      &in.Engine.drawnBlocks());
+      in.Engine.pixelFactors(), gmm::morphErrorBudget(*stats, this->PixelError), in.MorphCache, in.Morph,
+      in.Engine.morphRamp(), &in.Engine.drawnBlocks());
   }
   else if (!in.Engine.empty())
   {

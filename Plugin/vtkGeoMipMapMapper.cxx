@@ -680,8 +680,9 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     const gmm::Quadtree& qt = in.Engine.quadtree();
     if (!this->LastFrameFrozen || in.Morph.blockT.size() != static_cast<size_t>(qt.blockCount()))
     {
-      gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(), this->PixelError,
-        in.MorphCache, in.Morph, in.Engine.morphRamp(), &in.Engine.drawnBlocks());
+      gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(),
+        gmm::morphErrorBudget(in.Engine.stats(), this->PixelError), in.MorphCache, in.Morph,
+        in.Engine.morphRamp(), &in.Engine.drawnBlocks());
     }
     const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
     in.Morphing = merr.empty();

@@ -9,6 +9,9 @@
 //   draws): every frame's morphed surface measures within tau by the independent measure,
 //   and the largest screen displacement between consecutive frames (popping, measured at
 //   every sample in view) is several times smaller than with the plain certificate factors.
+// - BudgetedFramesMorphWithinTheirError: budgeted flights (tau 0) morph within the frame's
+//   certified error (gmm::morphErrorBudget), measured within it, and pop less than when
+//   they morphed within tau alone (which morphs nothing).
 // - CachedPartErrorsAreTheirKeysAlongBudgetedFrames: budgeted frames whose blocks go back
 //   and forth between two keys; each drawn block's cached part errors equal its key's,
 //   computed from nothing.
@@ -161,14 +164,18 @@ struct FlightOutcome
   double meanPop = 0.0;   // px, mean over frames of each frame's largest
   double worstError = 0.0; // px, the largest measured screen error of a frame (morphed)
   std::size_t triangles = 0;
+  std::size_t morphingBlocks = 0; // summed over frames: blocks with a factor > 0
 };
 
 // A slow, low flight over `hf` (as Testing/Benchmarks/measure_popping.py: `stepBlocks` block a
 // frame, 250 m above the highest sample, 20 degrees down), drawn as the mapper draws it:
-// engine update (merges on the path when `mergeOnPath`), then computeMorph with the same
-// cache every frame.
+// engine update (merges on the path when `mergeOnPath`; within `budget` triangles when it
+// is > 0, each search started at the last frame's tau), then computeMorph with the same
+// cache every frame, within gmm::morphErrorBudget (or tau alone when `morphWithinTau`).
+// Every frame's morphed surface is measured within its certified error (tau, or a budgeted
+// frame's own).
 FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double range, int frames,
-  double stepBlocks = 0.02, bool mergeOnPath = false)
+  double stepBlocks = 0.02, bool mergeOnPath = false, std::size_t budget = 0, bool morphWithinTau = false)
 {
   gmm::Engine e;
   EXPECT_EQ(e.setHeightfield(input, block, 1), "");
@@ -180,6 +187,7 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
   gmm::MorphCache cache;
   FlightOutcome out;
   std::vector<double> prev;
+  double startTau = 0.0;
   for (int f = 0; f < frames; ++f)
   {
     gmm::View v;
@@ -189,16 +197,28 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
     v.fovYDegrees = 50.0;
     v.nearDistance = 1.0;
     v.farDistance = 4.0 * ext;
-    e.update(v, tau);
+    if (budget > 0)
+    {
+      e.update(v, tau, budget, startTau);
+      startTau = e.stats().budgetTau;
+    }
+    else
+    {
+      e.update(v, tau);
+    }
     EXPECT_EQ(e.lastError(), "");
+    const double morphTau = morphWithinTau ? tau : gmm::morphErrorBudget(e.stats(), tau);
     gmm::MorphFrame mf;
-    gmm::computeMorph(hf, e.quadtree(), e.levels(), e.pixelFactors(), tau, cache, mf, e.morphRamp());
+    gmm::computeMorph(hf, e.quadtree(), e.levels(), e.pixelFactors(), morphTau, cache, mf, e.morphRamp());
+    out.morphingBlocks += std::count_if(mf.blockT.begin(), mf.blockT.end(), [](float t) { return t > 0.0f; });
+    // The frame's certified error: tau, or a budgeted frame's own (the morph adds none).
+    const double bound = std::max(morphTau, budget > 0 ? e.stats().maxScreenError : 0.0);
     const std::vector<double> z = morphedHeights(e, mf);
-    const ScreenMeasure m = measureScreenError(hf, e.indices(), &v, tau, MeasureTransform(), z.data());
+    const ScreenMeasure m = measureScreenError(hf, e.indices(), &v, bound, MeasureTransform(), z.data());
     EXPECT_EQ(m.violations, 0u) << "frame " << f << ": " << m.first;
     EXPECT_EQ(m.uncovered, 0u) << m.first;
     // The factors' own bound (a self-check; the measure above is the independent one).
-    EXPECT_LE(mf.maxBoundPixels, tau * (1 + 1e-9)) << "frame " << f;
+    EXPECT_LE(mf.maxBoundPixels, bound * (1 + 1e-9)) << "frame " << f;
     out.worstError = std::max(out.worstError, m.maxDist);
     out.triangles += e.stats().triangles;
     const SurfaceSample s = sampleSurface(hf, e.indices(), z.data());
@@ -242,6 +262,27 @@ TEST(MorphRamp, FlightCertifiedAndSmooth)
   EXPECT_LE(path.worstPop, 0.5 * plain.worstPop);
   EXPECT_LE(path.meanPop, 0.6 * plain.meanPop);
   EXPECT_GE(path.triangles, plain.triangles); // the path is never coarser than needed
+}
+
+TEST(MorphRamp, BudgetedFramesMorphWithinTheirError)
+{
+  // A budgeted frame's certified error is well above tau (tau 0: the smallest error the
+  // budget allows). Morphing within tau left its blocks unmorphed, and every level change at
+  // the budget's margin popped; within the frame's own error (gmm::morphErrorBudget) they
+  // morph, and the frame stays within that error by the independent measure (fly).
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(513, 513, 30.0, 1, 1500.0, 1);
+  const std::size_t budget = 60000;
+  const FlightOutcome withinTau = fly(hf, 32, 0.0, gmm::kDefaultMorphRange, 60, 0.05, false, budget, true);
+  const FlightOutcome withinError = fly(hf, 32, 0.0, gmm::kDefaultMorphRange, 60, 0.05, false, budget, false);
+  std::printf("[ ramp ] 513^2, block 32, budget %zu, 60 frames: mean of frame worst pop %.3f px "
+              "morphing within the frame's error, %.3f within tau; worst %.3f (%.3f); morphing "
+              "blocks %zu (%zu); measured error %.3f (%.3f) px\n",
+    budget, withinError.meanPop, withinTau.meanPop, withinError.worstPop, withinTau.worstPop,
+    withinError.morphingBlocks, withinTau.morphingBlocks, withinError.worstError, withinTau.worstError);
+  EXPECT_EQ(withinTau.morphingBlocks, 0u); // tau 0: nothing may morph
+  EXPECT_GT(withinError.morphingBlocks, 1000u);
+  EXPECT_LE(withinError.meanPop, 0.8 * withinTau.meanPop);
+  EXPECT_EQ(withinError.triangles, withinTau.triangles); // the morph changes no level
 }
 
 // A range that is not finite and > 1 follows no path: the same levels as no range at all.
