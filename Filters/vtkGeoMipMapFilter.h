@@ -155,7 +155,8 @@ public:
    * Geomorphing (default on, as vtkGeoMipMapMapper::SetGeomorphing): in view-dependent
    * mode, vertices that a block's next coarser level drops are moved toward that level's
    * surface by a per-block factor, so that level changes do not pop; the moved surface is
-   * still within PixelError (see Documentation/design.md, "Geomorphing"). Points keep
+   * still within PixelError, or with a TriangleBudget within the frame's certified error
+   * (see Documentation/design.md, "Geomorphing"). Points keep
    * their x, y; only heights move. Ignored in view-independent mode.
    */
   vtkSetMacro(Geomorphing, bool);
