@@ -75,8 +75,8 @@ struct MorphBlockState
   std::array<int8_t, 10> key{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 };
   PartErrors errors;
   // The key before, with its errors: a block that goes back to it takes them back. Budgeted
-  // frames move the blocks at the budget's margin back and forth between two levels (half
-  // of the changed keys along bench_core's BM_BudgetFlight; 2 in 17 600 without a budget).
+  // frames move the blocks at the budget's margin back and forth between two levels (43 -
+  // 53 % of the changed keys along bench_core's BM_BudgetFlight; 2 in 17 600 without one).
   std::array<int8_t, 10> previousKey{ -2, -2, -2, -2, -2, -2, -2, -2, -2, -2 };
   PartErrors previousErrors;
   // The rate limit (MorphRamp.h, kMorphSettlePerFrame): the block's drawn continuous level
@@ -92,8 +92,9 @@ struct MorphBlockState
 // errors only for blocks whose configuration or targets changed. One per engine.
 //
 // The state lives in a pool of slots, one per drawn block, packed together: memory follows
-// what is drawn (360 bytes a drawn block: 1.3 MB for 3 700 blocks), not the DEM (40 MB of part errors at 16385^2, zero-filled at
-// the first frame: 160 ms of fresh pages on the benchmark VM). A block that stops being
+// what is drawn (360 bytes a drawn block: 1.3 MB for 3 700 blocks), not the DEM (40 MB of
+// part errors at 16385^2, zero-filled at the first frame: 160 ms of fresh pages on the
+// benchmark VM). A block that stops being
 // drawn gives its slot back; when it is drawn again its errors are computed afresh (they
 // depend on the key only).
 struct MorphCache

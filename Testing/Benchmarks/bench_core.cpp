@@ -234,10 +234,11 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
 
 // BM_BudgetFlight: the mapper's CPU work per frame in a budgeted frame (issue #14): the same
 // flight with tau 0 and a triangle budget, each frame's search started at the previous
-// frame's tau (FrameStats::budgetTau, as the mapper does), geomorphing's level path and
-// computeMorph as in BM_LodFlightMapperDefault. The budget is held, or (`varying`) moved by
-// +-15 % every 8 frames as a frame-rate controller moves it. Counters: selections a frame
-// (the search's trials) and the certified error reached.
+// frame's tau (FrameStats::budgetTau, as the mapper does), and computeMorph within the
+// frame's error (gmm::morphErrorBudget), as the mapper runs them with geomorphing on (its
+// default range set; budgeted frames follow no level path). The budget is held, or
+// (`varying`) moved by +-15 % every 8 frames as a frame-rate controller moves it. Counters:
+// selections a frame (the search's trials) and the certified error reached.
 void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::size_t budget, bool varying)
 {
   Scene& s = scene(size, blockQuads);
@@ -256,14 +257,14 @@ void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::siz
   };
   e.update(s.flight[0], 0.0, budgetOf(0), 0.0); // warm-up, as runFlight
   startTau = e.stats().budgetTau;
-  gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 0.0, morphCache, morph,
-    e.morphRamp(), &e.drawnBlocks());
+  gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(),
+    gmm::morphErrorBudget(e.stats(), 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks());
   for (auto _ : state)
   {
     const auto t0 = std::chrono::steady_clock::now();
     const gmm::FrameStats& st = e.update(s.flight[frame % s.flight.size()], 0.0, budgetOf(frame), startTau);
-    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 0.0, morphCache, morph,
-      e.morphRamp(), &e.drawnBlocks());
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(),
+      gmm::morphErrorBudget(st, 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks());
     benchmark::DoNotOptimize(morph.blockT.data());
     totalUs += seconds(t0) * 1e6;
     startTau = st.budgetTau;
