@@ -223,7 +223,8 @@ int vtkGeoMipMapFilter::RequestData(
   output->GetFieldData()->AddArray(triCount);
   addInt("VisibleBlocks", stats->visibleBlocks);
   addInt("CulledBlocks", stats->culledBlocks);
-  // The bound of what is output: the morphed surface's when morphing (still <= PixelError).
+  // The bound of what is output: the morphed surface's when morphing (still <= PixelError, or
+  // a budgeted frame's own certified error: gmm::morphErrorBudget).
   addDouble("MaximumScreenSpaceError",
     morph ? std::max(stats->maxScreenError, in.Morph.maxBoundPixels) : stats->maxScreenError);
   addDouble("MaximumGeometricError", stats->maxGeometricError);

@@ -336,7 +336,8 @@ int vtkGeoMipMapMapper::GetNumberOfCulledBlocks() const
 }
 double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
 {
-  // While morphing, the bound of the morphed surface (Morph.h), still <= PixelError.
+  // While morphing, the bound of the morphed surface (Morph.h), still <= PixelError (or a
+  // budgeted frame's own certified error: gmm::morphErrorBudget).
   const Internals& in = *this->Internal;
   return this->LastFrameDrawn
     ? std::max(in.Engine.stats().maxScreenError, in.Morphing ? in.Morph.maxBoundPixels : 0.0)
