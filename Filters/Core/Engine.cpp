@@ -38,6 +38,7 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   terrain_ = terrain ? std::move(terrain) : std::make_shared<const Terrain>();
   const int blocks = terrain_->qt.blockCount();
   levels_.clear();
+  levelsFromSelection_ = false;
   stats_ = FrameStats();
   drawnConfig_.assign(blocks, notDrawn());
   drawnList_.clear();
@@ -80,6 +81,7 @@ const FrameStats& Engine::update(const View& view, double tau)
   }
   cullAndProject(view);
   const Terrain& t = *terrain_;
+  levelsFromSelection_ = false;
   selectLevels(t.qt, t.table, visibleList_, factor_, tau, levels_, selectScratch_, ramp);
   return finishFrame(&factor_, &visibleList_);
 }
@@ -96,6 +98,7 @@ bool Engine::validFrame(const View& view, double tau)
   if (!lastError_.empty())
   {
     levels_.assign(terrain_->qt.blockCount(), -1);
+    levelsFromSelection_ = false;
     return false;
   }
   return true;
@@ -149,6 +152,7 @@ const FrameStats& Engine::updateForError(double maxError)
   if (!lastError_.empty())
   {
     levels_.assign(terrain_->qt.blockCount(), -1);
+    levelsFromSelection_ = false;
     return finishFrame(nullptr);
   }
   // The table holds stored-height errors; the bound is in the scaled surface's units.
@@ -157,6 +161,7 @@ const FrameStats& Engine::updateForError(double maxError)
     selectHierarchically(nullptr, nullptr, maxError / heightScale_);
     return finishFrame(nullptr, &visibleList_, &nodeSelection_.merged);
   }
+  levelsFromSelection_ = false;
   selectLevelsForError(terrain_->qt, terrain_->table, maxError / heightScale_, levels_);
   return finishFrame(nullptr);
 }
@@ -165,8 +170,12 @@ void Engine::selectHierarchically(const Frustum* frustum,
   const BoxProjector* projector, double tau, MorphRamp* ramp)
 {
   const Terrain& t = *terrain_;
-  selectNodes(t.qt, t.table, frustum, projector, tau, nodeSelection_, nodeScratch_, selectScratch_, ramp);
-  // The engine's per-block lists take the selection's (swapped: both are rebuilt per frame).
+  // The selection updates the engine's level list in place when it holds the last one
+  // (levelsFromSelection_); its other lists are rebuilt, and swapped in.
+  nodeSelection_.levels.swap(levels_);
+  selectNodes(t.qt, t.table, frustum, projector, tau, nodeSelection_, nodeScratch_, selectScratch_, ramp,
+    levelsFromSelection_ ? &visibleList_ : nullptr);
+  levelsFromSelection_ = true;
   levels_.swap(nodeSelection_.levels);
   factor_.swap(nodeSelection_.factor);
   visibleList_.swap(nodeSelection_.blocks);
@@ -177,6 +186,7 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
   rampCurrent_ = false;
   lastError_.clear();
   levels_.assign(terrain_->qt.blockCount(), -1);
+  levelsFromSelection_ = false;
   if (levels.size() != levels_.size())
   {
     std::ostringstream why;

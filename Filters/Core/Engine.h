@@ -209,6 +209,10 @@ private:
   std::vector<int> drawnList_, nowDrawn_; // blocks drawn last frame / this frame
   std::vector<double> factor_;
   std::vector<int8_t> levels_;
+  // levels_, visibleList_ and nodeSelection_.merged are a hierarchical selection's (a
+  // budgeted frame's phase 2 changes only its blocks' levels), so the next one updates
+  // levels_ in place (selectNodes' lastBlocks). Every other writer of levels_ clears it.
+  bool levelsFromSelection_ = false;
   // Per block, the configuration it was last tessellated with (level -1 = not drawn), so a
   // frame regenerates only blocks whose configuration changed; their triangles live in
   // the arena's slots.

@@ -34,6 +34,7 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
   else
   {
     hierarchicalTrials = outcome.trials; // of a hierarchical search that gave up
+    levelsFromSelection_ = false;
     cullAndProject(view);
     selectLevelsWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, levels_,
       budgetScratch_, outcome);

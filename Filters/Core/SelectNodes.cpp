@@ -91,7 +91,63 @@ public:
     ns_.touched.push_back(index);
     out_.merged.push_back(index);
     out_.mergedFactor.push_back(f);
-    setCovered(n, kCoveredLevel);
+    // A node the last selection drew whole is covered already (wasMerged is set during
+    // selectNodes' first walk only, which reaches no node below one it draws whole).
+    if (!ns_.wasMerged[index])
+    {
+      setCovered(n, kCoveredLevel);
+    }
+  }
+
+  // True when a node above `index` is drawn whole now.
+  bool coveredFromAbove(int index) const
+  {
+    const QuadtreeNode& target = qt_.nodes[index];
+    int at = 0;
+    while (at != index)
+    {
+      if (ns_.merged[at])
+      {
+        return true;
+      }
+      // The path from the root to the leaf of the node's first block passes through it.
+      const QuadtreeNode& n = qt_.nodes[at];
+      int next = -1;
+      for (int k = 0; k < n.childCount && next < 0; ++k)
+      {
+        const QuadtreeNode& ch = qt_.nodes[n.firstChild + k];
+        if (target.colBegin >= ch.colBegin && target.colBegin < ch.colEnd &&
+          target.rowBegin >= ch.rowBegin && target.rowBegin < ch.rowEnd)
+        {
+          next = n.firstChild + k;
+        }
+      }
+      if (next < 0)
+      {
+        return false;
+      }
+      at = next;
+    }
+    return false;
+  }
+
+  // The blocks below `index` back to -1, except below the nodes drawn whole now.
+  void uncover(int index)
+  {
+    if (ns_.merged[index])
+    {
+      return;
+    }
+    const QuadtreeNode& n = qt_.nodes[index];
+    if (n.childCount == 0)
+    {
+      out_.levels[n.block] = -1;
+      return;
+    }
+    for (int k = 0; k < n.childCount; ++k)
+    {
+      uncover(n.firstChild + k);
+    }
   }
 
   // Splits the merged node that covers block b and walks its children.
@@ -151,13 +207,32 @@ private:
 
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
   const BoxProjector* projector, double tau, NodeSelection& out, NodeScratch& ns,
-  SelectionScratch& scratch, MorphRamp* ramp)
+  SelectionScratch& scratch, MorphRamp* ramp, const std::vector<int>* lastBlocks)
 {
   const std::size_t blocks = static_cast<std::size_t>(qt.blockCount());
+  ns.wasMerged.resize(qt.nodes.size(), 0);
+  ns.lastMerged.clear();
+  if (lastBlocks && out.levels.size() == blocks)
+  {
+    // The last selection's blocks back to -1; its merged nodes' blocks stay covered until
+    // the walk below has seen which nodes are still drawn whole.
+    for (int b : *lastBlocks)
+    {
+      out.levels[b] = -1;
+    }
+    ns.lastMerged.swap(out.merged);
+    for (int n : ns.lastMerged)
+    {
+      ns.wasMerged[n] = 1;
+    }
+  }
+  else
+  {
+    out.levels.assign(blocks, -1);
+  }
   out.blocks.clear();
   out.merged.clear();
   out.mergedFactor.clear();
-  out.levels.assign(blocks, -1);
   out.factor.resize(blocks);
   scratch.budget.resize(blocks);
   // Flags are cleared where last frame set them: the walk costs what it visits.
@@ -183,6 +258,17 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   }
   Walk walk(qt, table, frustum, projector, tau, out, ns, ramp);
   walk.node(0, false);
+  // The last selection's merged nodes not drawn whole now, nor below one that is: their
+  // blocks are not covered any more (blocks the walk reached take their levels below).
+  // Their flags are cleared before any split walks a node again.
+  for (int n : ns.lastMerged)
+  {
+    if (!ns.merged[n] && !walk.coveredFromAbove(n))
+    {
+      walk.uncover(n);
+    }
+    ns.wasMerged[n] = 0;
+  }
   for (;;)
   {
     for (int b : ns.newBlocks)

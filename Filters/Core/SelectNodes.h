@@ -33,6 +33,10 @@ struct NodeScratch
   std::vector<uint8_t> split;    // per node: may not be drawn whole this frame
   std::vector<int> touched;      // nodes whose flags are set (cleared next frame)
   std::vector<int> newBlocks;    // blocks reached by the last walk
+  // An update of the last selection's level list (selectNodes' `lastBlocks`): the nodes it
+  // drew whole, flagged in `wasMerged` while the selection runs.
+  std::vector<int> lastMerged;
+  std::vector<uint8_t> wasMerged;
   // The projector's factors of node and block boxes, kept for one view while `memoView` is
   // that projector (FactorMemo): a budgeted frame runs one whole selection per trial tau,
   // and recomputing the factors was 17 % of its time over Rainier. An entry is current
@@ -82,8 +86,15 @@ struct NodeSelection
   std::vector<double> mergedFactor;
 };
 
+// `lastBlocks` null: out.levels is written whole (every block). Else out.levels, out.merged
+// and *lastBlocks (a list other than out.blocks) must be the last selection's of this
+// quadtree, as selectNodes left them (its drawn blocks may have changed levels, not stopped
+// being drawn): only the blocks and nodes it drew, and those drawn now, are written, so
+// that a frame costs what it draws, not the DEM's block count (a whole list was 14 % of a
+// 16385^2 frame).
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
   const BoxProjector* projector, double tau, NodeSelection& out,
-  NodeScratch& nodeScratch, SelectionScratch& scratch, MorphRamp* ramp = nullptr);
+  NodeScratch& nodeScratch, SelectionScratch& scratch, MorphRamp* ramp = nullptr,
+  const std::vector<int>* lastBlocks = nullptr);
 
 } // namespace gmm
