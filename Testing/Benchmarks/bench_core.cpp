@@ -21,8 +21,12 @@
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
 // tau = 1 px, the default block size (gmm::kDefaultBlockQuads; GEOMIPMAP_BENCH_BLOCK=N for
-// another) unless swept. Each benchmark iteration is one frame (Engine::update: cull +
-// select + tessellate, single thread); the flight loops after kFlightFrames frames.
+// another) unless swept. Each benchmark iteration is one frame, single thread; the flight
+// loops after kFlightFrames frames. Counters: frame_us, the whole iteration (engine default:
+// Engine::update, cull + select + tessellate, then Engine::indices(), the concatenated list
+// the filter outputs; mapper default: update and computeMorph); update_us, Engine::update
+// alone (the mapper's frame without geomorphing: it draws the index arena, no list).
+// Concatenating was more than half the engine default's frame at 4097^2 (session 16).
 #include "Engine.h"
 #include "Morph.h"
 #include "SyntheticTerrain.h"
@@ -181,7 +185,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   gmm::MorphCache morphCache;
   gmm::MorphFrame morph;
   std::size_t frame = 0, triangles = 0, reused = 0, visible = 0, regenFrames = 0;
-  double maxErr = 0, totalUs = 0, regenUs = 0;
+  double maxErr = 0, totalUs = 0, regenUs = 0, updateUs = 0;
   // Warm up one frame (with its morph when measured) so that the first measured frame is
   // not a cold start: the first computeMorph allocates its cache, a one-off cost that 2000
   // frames would otherwise spread over the mean.
@@ -195,6 +199,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   {
     const auto t0 = std::chrono::steady_clock::now();
     const gmm::FrameStats& st = e.update(flight[frame % flight.size()], 1.0);
+    updateUs += seconds(t0) * 1e6;
     if (mapperDefault)
     {
       gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 1.0, morphCache,
@@ -220,6 +225,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   }
   const double n = static_cast<double>(frame);
   state.counters["frame_us"] = totalUs / n;
+  state.counters["update_us"] = updateUs / n;
   state.counters["regen_frame_us"] = regenFrames ? regenUs / regenFrames : 0.0;
   state.counters["triangles"] = triangles / n;
   state.counters["tris_per_us"] = triangles / totalUs;
