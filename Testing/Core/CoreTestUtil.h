@@ -68,6 +68,32 @@ inline gmm::Heightfield roughTerrain(int nx, int ny, Rng& rng, double spacingX =
   return hf;
 }
 
+// Ranges of randomViewOver: the eye up to `margin` of the extent outside it, at a height in
+// [lowEye, highEye]; the pitch in [lowPitch, highPitch] radians; the far plane in [lowFar, 1e5].
+struct ViewRanges
+{
+  double margin = 0.2, lowEye = 50.0, highEye = 3000.0;
+  double lowPitch = -1.4, highPitch = -0.05, lowFar = 500.0;
+};
+
+// A perspective view over the heightfield, any heading, fov 20 - 90, 640 x 400, near 1.
+inline gmm::View randomViewOver(const gmm::Heightfield& hf, Rng& rng, const ViewRanges& r = ViewRanges())
+{
+  const double w = (hf.nx - 1) * hf.dx, h = (hf.ny - 1) * hf.dy;
+  gmm::View v;
+  v.eye = { hf.x0 + randReal(rng, -r.margin, 1.0 + r.margin) * w,
+    hf.y0 + randReal(rng, -r.margin, 1.0 + r.margin) * h, randReal(rng, r.lowEye, r.highEye) };
+  const double yaw = randReal(rng, 0, 6.283), pitch = randReal(rng, r.lowPitch, r.highPitch);
+  v.forward = { std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch) };
+  v.up = { 0, 0, 1 };
+  v.fovYDegrees = randReal(rng, 20, 90);
+  v.viewportWidth = 640;
+  v.viewportHeight = 400;
+  v.nearDistance = 1.0;
+  v.farDistance = randReal(rng, r.lowFar, 1e5);
+  return v;
+}
+
 // Valid levels of a block, from Levels.h's rules restated here (not the engine's code).
 inline bool refLevelValid(int w, int h, int m)
 {

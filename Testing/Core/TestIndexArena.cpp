@@ -75,21 +75,6 @@ void expectFrameConsistent(const gmm::Engine& e, Mirror& m, const std::string& w
   ASSERT_EQ(e.stats().triangles * 3, fresh.size()) << what;
 }
 
-gmm::View viewAt(const gmm::Heightfield& hf, Rng& rng)
-{
-  const double w = (hf.nx - 1) * hf.dx, h = (hf.ny - 1) * hf.dy;
-  gmm::View v;
-  v.eye = { hf.x0 + randReal(rng, -0.2, 1.2) * w, hf.y0 + randReal(rng, -0.2, 1.2) * h, randReal(rng, 50, 3000) };
-  const double yaw = randReal(rng, 0, 6.283), pitch = randReal(rng, -1.4, -0.05);
-  v.forward = { std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch) };
-  v.up = { 0, 0, 1 };
-  v.fovYDegrees = randReal(rng, 20, 90);
-  v.viewportWidth = 640;
-  v.viewportHeight = 400;
-  v.nearDistance = 1.0;
-  v.farDistance = randReal(rng, 500, 1e5);
-  return v;
-}
 } // namespace
 
 TEST(IndexArena, MirrorAndTrianglesAfterRandomFrames)
@@ -107,7 +92,7 @@ TEST(IndexArena, MirrorAndTrianglesAfterRandomFrames)
     {
       const int kind = randInt(rng, 0, 9);
       if (kind < 6)
-        e.update(viewAt(e.heightfield(), rng), randReal(rng, 0.3, 8.0));
+        e.update(randomViewOver(e.heightfield(), rng), randReal(rng, 0.3, 8.0));
       else if (kind < 8)
         e.updateForError(randReal(rng, 0.0, 50.0));
       else

@@ -20,22 +20,8 @@ using namespace gmmtest;
 namespace
 {
 
-gmm::View randomView(const gmm::Heightfield& hf, Rng& rng)
-{
-  const double w = (hf.nx - 1) * hf.dx, h = (hf.ny - 1) * hf.dy;
-  gmm::View v;
-  v.eye = { hf.x0 + randReal(rng, -0.3, 1.3) * w, hf.y0 + randReal(rng, -0.3, 1.3) * h,
-    randReal(rng, 20, 6000) };
-  const double yaw = randReal(rng, 0, 6.283), pitch = randReal(rng, -1.5, 0.2);
-  v.forward = { std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch) };
-  v.up = { 0, 0, 1 };
-  v.fovYDegrees = randReal(rng, 20, 90);
-  v.viewportWidth = 640;
-  v.viewportHeight = 400;
-  v.nearDistance = 1.0;
-  v.farDistance = randReal(rng, 300, 1e5);
-  return v;
-}
+// Higher eyes and views up to the horizon and beyond: more nodes drawn whole.
+const ViewRanges kRanges{ 0.3, 20.0, 6000.0, -1.5, 0.2, 300.0 };
 
 // The view moved a step: forward or back, and turned a little, so that merged nodes split,
 // join and leave the view gradually.
@@ -94,14 +80,14 @@ TEST(LevelListInPlace, EqualsAListWrittenWholeAfterAnySequence)
       hf.z[hf.index(hf.nx / 3, hf.ny / 2)] = std::numeric_limits<float>::quiet_NaN();
     gmm::Engine e;
     ASSERT_EQ(e.setHeightfield(hf, 4 << randInt(rng, 0, 3)), "");
-    gmm::View view = randomView(e.heightfield(), rng);
+    gmm::View view = randomViewOver(e.heightfield(), rng, kRanges);
     const double extent = (hf.nx - 1) * hf.dx;
     std::vector<int> lastMerged;
     for (int call = 0; call < 120; ++call)
     {
       const std::string what = "dem " + std::to_string(dem) + " call " + std::to_string(call);
       const int kind = randInt(rng, 0, 19);
-      view = kind < 3 ? randomView(e.heightfield(), rng) : stepOf(view, rng, 0.02 * extent);
+      view = kind < 3 ? randomViewOver(e.heightfield(), rng, kRanges) : stepOf(view, rng, 0.02 * extent);
       const double tau = std::exp(randReal(rng, std::log(0.3), std::log(40.0)));
       if (kind == 19)
       {
