@@ -114,6 +114,21 @@ inline int refTopLevel(int w, int h)
   return m;
 }
 
+// Random explicit levels (Engine::updateWithLevels): each block -1 or a level from 0 to its
+// top, kept where valid (refLevelValid; 0 only on a block with nodata), else -1.
+inline std::vector<int8_t> randomValidLevels(const gmm::Quadtree& qt, Rng& rng)
+{
+  std::vector<int8_t> levels(qt.blockCount(), -1);
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+    const int m = randInt(rng, -1, refTopLevel(w, h));
+    if (m >= 0 && refLevelValid(w, h, m) && !(qt.blockHasNodata[b] && m > 0))
+      levels[b] = static_cast<int8_t>(m);
+  }
+  return levels;
+}
+
 // Triangles of the coarsest frame (a huge tolerance, no nodata) below quadtree node
 // `node`, from the design rather than the engine: with merged nodes, the highest node on
 // each path that spans at least 2 x 2 blocks is drawn whole, a fan with one triangle per

@@ -98,17 +98,7 @@ TEST(IndexArena, MirrorAndTrianglesAfterRandomFrames)
       else
       {
         // Explicit levels: random valid ones, some blocks not drawn.
-        const gmm::Quadtree& qt = e.quadtree();
-        std::vector<int8_t> levels(qt.blockCount(), -1);
-        for (int b = 0; b < qt.blockCount(); ++b)
-        {
-          const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-          const int m0 = randInt(rng, -1, gmm::topLevel(w, h));
-          if (m0 >= 0 && gmm::blockShape(w, h, m0) != gmm::BlockShape::Invalid &&
-            !(qt.blockHasNodata[b] && m0 > 0))
-            levels[b] = static_cast<int8_t>(m0);
-        }
-        e.updateWithLevels(levels);
+        e.updateWithLevels(randomValidLevels(e.quadtree(), rng));
         ASSERT_EQ(e.lastError(), "");
       }
       expectFrameConsistent(e, m, "dem " + std::to_string(dem) + " frame " + std::to_string(frame));

@@ -10,7 +10,6 @@
 //    -1 everywhere else.
 #include "CoreTestUtil.h"
 #include "Engine.h"
-#include "Levels.h"
 #include "Tessellate.h"
 
 #include <gtest/gtest.h>
@@ -125,15 +124,7 @@ TEST(LevelListInPlace, EqualsAListWrittenWholeAfterAnySequence)
       }
       else
       {
-        const gmm::Quadtree& qt = e.quadtree();
-        std::vector<int8_t> levels(qt.blockCount(), -1);
-        for (int b = 0; b < qt.blockCount(); ++b)
-        {
-          const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-          const int m = randInt(rng, -1, gmm::topLevel(w, h));
-          if (m >= 0 && gmm::blockShape(w, h, m) != gmm::BlockShape::Invalid && !(qt.blockHasNodata[b] && m > 0))
-            levels[b] = static_cast<int8_t>(m);
-        }
+        const std::vector<int8_t> levels = randomValidLevels(e.quadtree(), rng);
         e.updateWithLevels(levels);
         fresh.updateWithLevels(levels);
       }
