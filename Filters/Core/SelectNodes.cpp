@@ -99,36 +99,33 @@ public:
     }
   }
 
-  // True when a node above `index` is drawn whole now.
-  bool coveredFromAbove(int index) const
+  // The first node drawn whole on the path from the root to block (c, r), looked for down
+  // to node `last` (-1: down to the leaf); -1 when there is none.
+  int mergedOnPathTo(int c, int r, int last = -1) const
   {
-    const QuadtreeNode& target = qt_.nodes[index];
     int at = 0;
-    while (at != index)
+    for (;;)
     {
       if (ns_.merged[at])
       {
-        return true;
+        return at;
       }
-      // The path from the root to the leaf of the node's first block passes through it.
       const QuadtreeNode& n = qt_.nodes[at];
       int next = -1;
-      for (int k = 0; k < n.childCount && next < 0; ++k)
+      for (int k = 0; k < n.childCount && next < 0 && at != last; ++k)
       {
         const QuadtreeNode& ch = qt_.nodes[n.firstChild + k];
-        if (target.colBegin >= ch.colBegin && target.colBegin < ch.colEnd &&
-          target.rowBegin >= ch.rowBegin && target.rowBegin < ch.rowEnd)
+        if (c >= ch.colBegin && c < ch.colEnd && r >= ch.rowBegin && r < ch.rowEnd)
         {
           next = n.firstChild + k;
         }
       }
       if (next < 0)
       {
-        return false;
+        return -1;
       }
       at = next;
     }
-    return false;
   }
 
   // The blocks below `index` back to -1, except below the nodes drawn whole now.
@@ -153,25 +150,10 @@ public:
   // Splits the merged node that covers block b and walks its children.
   void splitCovering(int b)
   {
-    const int c = b % qt_.blockCols, r = b / qt_.blockCols;
-    int index = 0;
-    while (!ns_.merged[index])
+    const int index = mergedOnPathTo(b % qt_.blockCols, b / qt_.blockCols);
+    if (index < 0)
     {
-      const QuadtreeNode& n = qt_.nodes[index];
-      int next = -1;
-      for (int k = 0; k < n.childCount && next < 0; ++k)
-      {
-        const QuadtreeNode& ch = qt_.nodes[n.firstChild + k];
-        if (c >= ch.colBegin && c < ch.colEnd && r >= ch.rowBegin && r < ch.rowEnd)
-        {
-          next = n.firstChild + k;
-        }
-      }
-      if (next < 0)
-      {
-        return; // not covered (already split this round)
-      }
-      index = next;
+      return; // not covered (already split this round)
     }
     const QuadtreeNode& n = qt_.nodes[index];
     ns_.merged[index] = 0;
@@ -260,10 +242,11 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   walk.node(0, false);
   // The last selection's merged nodes not drawn whole now, nor below one that is: their
   // blocks are not covered any more (blocks the walk reached take their levels below).
-  // Their flags are cleared before any split walks a node again.
+  // Their flags are cleared before any split walks a node again. (The path to a node's
+  // first block passes through the node.)
   for (int n : ns.lastMerged)
   {
-    if (!ns.merged[n] && !walk.coveredFromAbove(n))
+    if (walk.mergedOnPathTo(qt.nodes[n].colBegin, qt.nodes[n].rowBegin, n) < 0)
     {
       walk.uncover(n);
     }
