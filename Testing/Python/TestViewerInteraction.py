@@ -5,7 +5,8 @@ interaction: vtkInteractorEventRecorder plays events on the viewer's window inte
 The viewer runs in this process (cli.open_viewer: the command's own loading and window)
 over the synthetic terrain, 513^2 at 640 x 360:
 - loading progress: the source's and the error-table build's progress events reach the
-  window (the texts it rendered while loading) and the terminal;
+  window (the texts it rendered while loading) and the terminal; the window's redraw
+  throttle, under a fake clock;
 - orbit drag: the camera turns about its focal point;
 - '+' / '-': tau doubles / halves, clamped to 1/16 .. 256;
 - 'w': the actor's representation toggles wireframe / surface;
@@ -42,7 +43,8 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import refscene
 from gmmtestutil import check_within_tau
-from viewtestutil import drag, key, keys, open_viewer_recording, stream
+from viewtestutil import (check_progress_throttle, drag, key, keys, open_viewer_recording,
+                          stream)
 
 from geomipmap_apps.view import cli, viewer as viewer_module
 
@@ -76,6 +78,7 @@ for stage in ("generating terrain", "error tables"):
     check(f"geomipmap-view: {stage} 100 %" in terminal,
           f"the terminal got the {stage} stage's progress")
 check(not v.overlay.loading.GetVisibility(), "the loading text is gone once loaded")
+check_progress_throttle(check)
 mapper, cam = v.mapper, v.camera
 
 

@@ -5,7 +5,8 @@ N48W125.hgt (SRTM 1", 3601 x 3601 = 13 M samples) with the table cache off, so t
 loading stages take long enough to report progress between 0 and 1 (measured: the reader
 reports 0, 0.31, 0.61, 0.92, 1; the error tables about 15 fractions in 0.7 s). Checks:
 each stage's intermediate fractions reached the window (the texts it rendered while
-loading) and the terminal; then an orbit drag, '+' and a fly-mode excursion are played and
+loading, recorded with the redraw throttle off: a fast disk reads the tile in under its
+0.1 s) and the terminal; then an orbit drag, '+' and a fly-mode excursion are played and
 the final frame measures within tau (gmmtestutil.check_drawn_within_tau; uncovered
 samples allowed: the tile's north half is void, and a valid sample whose every quad
 touches a void is drawn by no triangle; 17 of them in view here).

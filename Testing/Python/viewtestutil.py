@@ -42,10 +42,14 @@ def stream(*parts):
 
 def open_viewer_recording(argv, say=None):
     """Runs geomipmap-view's own loading (cli.open_viewer) for the command line `argv`;
-    returns (viewer, the texts the window rendered while loading, the terminal's text)."""
+    returns (viewer, the texts the window rendered while loading, the terminal's text).
+    The window's redraw throttle is off meanwhile: a stage faster than its interval shows
+    only 0 and 100 % (check_progress_throttle tests that), and whether a read takes more
+    than 0.1 s depends on the machine, so the recording gets every distinct text."""
     import io
 
     from geomipmap_apps.view import cli, viewer
+    from geomipmap_apps.view.progress import LoadProgress
 
     shown = []
     show_loading = viewer.Overlay.show_loading
@@ -55,6 +59,8 @@ def open_viewer_recording(argv, say=None):
         show_loading(self, text)
 
     viewer.Overlay.show_loading = recording_show
+    interval = LoadProgress.WINDOW_INTERVAL_S
+    LoadProgress.WINDOW_INTERVAL_S = 0.0
     terminal = io.StringIO()
     try:
         args = cli.build_parser().parse_args(argv)
@@ -62,6 +68,35 @@ def open_viewer_recording(argv, say=None):
         v = cli.open_viewer(args, stream=terminal, say=say)
     finally:
         viewer.Overlay.show_loading = show_loading
+        LoadProgress.WINDOW_INTERVAL_S = interval
     print("window showed while loading:", shown)
     print("terminal:", terminal.getvalue().replace("\n", " | "))
     return v, shown, terminal.getvalue()
+
+
+def check_progress_throttle(check):
+    """The window's loading text under a fake clock: within a stage a redraw waits
+    LoadProgress's interval, except at the stage's start and end; a text that did not
+    change is not redrawn. Expected sequences written by hand from that rule."""
+    import io
+
+    from geomipmap_apps.view.progress import LoadProgress
+
+    now = [0.0]
+    shown = []
+    progress = LoadProgress("p", shown.append, io.StringIO(), interval=0.1,
+                            clock=lambda: now[0])
+    stage = progress.stage("reading DEM")
+    for t, fraction in ((0.0, 0.0), (0.05, 0.3), (0.12, 0.6), (0.15, 0.9), (0.16, 1.0)):
+        now[0] = t
+        stage(fraction)
+    want = ["Loading: reading DEM   0 %", "Loading: reading DEM  60 %",
+            "Loading: reading DEM 100 %"]
+    check(shown == want, f"throttle: 0.3 within 0.1 s of 0 and 0.9 of 0.6 skipped ({shown})")
+    shown.clear()
+    tables = progress.stage("error tables")
+    for t, fraction in ((0.17, 0.0), (0.30, 0.001), (0.41, 0.002), (0.52, 0.5)):
+        now[0] = t
+        tables(fraction)
+    want = ["Loading: error tables   0 %", "Loading: error tables  50 %"]
+    check(shown == want, f"throttle: a new stage shows at once; 0 % again not redrawn ({shown})")
