@@ -4,6 +4,7 @@
 #include "Tessellate.h"
 
 #include <algorithm>
+#include <array>
 
 namespace gmm
 {
@@ -185,6 +186,45 @@ private:
   MorphRamp* mergeGate_; // the path, when merges wait for it (MorphRamp::mergeOnPath)
 };
 
+// Marks block b and its neighbours for the next round's recheck. Both passes of a round
+// read only a block's and its neighbours' levels and budgets (and its path, which changes
+// with its level), so a block none of whose inputs changed since a pass last looked at it
+// is left as it is by that pass: rampBesideFinerNeighbours finds the same factor, and
+// fixStrips the same strips within budget.
+void markForRecheck(const Quadtree& qt, int b, SelectionScratch& scratch)
+{
+  scratch.recheck.resize(static_cast<std::size_t>(qt.blockCount()), 0);
+  const std::array<int, 4> neighbour = qt.blockNeighbours(b);
+  for (int m : { b, neighbour[0], neighbour[1], neighbour[2], neighbour[3] })
+  {
+    if (m >= 0 && !scratch.recheck[m])
+    {
+      scratch.recheck[m] = 1;
+      scratch.marked.push_back(m);
+    }
+  }
+}
+
+// The drawn blocks marked for recheck, in `drawn`'s order (the order a whole round takes
+// them in); the marks are cleared.
+const std::vector<int>& recheckList(const std::vector<int>& drawn, SelectionScratch& scratch)
+{
+  scratch.recheckList.clear();
+  for (int b : drawn)
+  {
+    if (scratch.recheck[b])
+    {
+      scratch.recheckList.push_back(b);
+    }
+  }
+  for (int m : scratch.marked)
+  {
+    scratch.recheck[m] = 0;
+  }
+  scratch.marked.clear();
+  return scratch.recheckList;
+}
+
 } // namespace
 
 void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* frustum,
@@ -253,7 +293,7 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     }
     ns.wasMerged[n] = 0;
   }
-  for (;;)
+  for (bool firstRound = true;; firstRound = false)
   {
     for (int b : ns.newBlocks)
     {
@@ -261,15 +301,34 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
       scratch.budget[b] = errorBudget(tau, out.factor[b]);
       out.levels[b] = static_cast<int8_t>(leafLevel(qt, table, b, scratch.budget[b], ramp));
     }
+    // The first round looks at every drawn block; a round after splits only at those whose
+    // level or a neighbour's changed since the last one (markForRecheck).
+    for (std::size_t k = 0; !firstRound && k < ns.newBlocks.size(); ++k)
+    {
+      markForRecheck(qt, ns.newBlocks[k], scratch);
+    }
+    const std::vector<int>& round = firstRound ? out.blocks : recheckList(out.blocks, scratch);
     ns.newBlocks.clear();
+    scratch.levelsBefore.resize(out.blocks.size());
+    for (std::size_t k = 0; k < out.blocks.size(); ++k)
+    {
+      scratch.levelsBefore[k] = out.levels[out.blocks[k]];
+    }
     if (ramp && ramp->active())
     {
-      rampBesideFinerNeighbours(qt, table, scratch.budget, out.blocks, out.levels, *ramp);
+      rampBesideFinerNeighbours(qt, table, scratch.budget, round, out.levels, *ramp);
     }
-    fixStrips(qt, table, scratch.budget, out.blocks, out.levels, scratch);
+    fixStrips(qt, table, scratch.budget, round, out.levels, scratch);
     if (scratch.splitRequests.empty())
     {
       break;
+    }
+    for (std::size_t k = 0; k < scratch.levelsBefore.size(); ++k)
+    {
+      if (out.levels[out.blocks[k]] != scratch.levelsBefore[k])
+      {
+        markForRecheck(qt, out.blocks[k], scratch);
+      }
     }
     // Splitting walks nodes and lists blocks; it leaves the requests alone.
     for (int b : scratch.splitRequests)
