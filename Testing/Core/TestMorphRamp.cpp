@@ -3,6 +3,9 @@
 // - PathByHand: chains worked out by hand from the definition.
 // - PathEqualsDefinition: rampPath against a brute-force minimum of its definition over a
 //   dense grid of budgets, on random chains (equal errors included).
+// - PathIsTheLeastCandidateExactly: rampPath skips segments by a bound on their logarithm;
+//   it must return the very double that taking every segment's candidate in turn gives
+//   (written out here), over random chains, budgets from 1e-300 to 1e300 and ranges near 1.
 // - PathSlopeAndCertificate: the path never moves faster than 1 / ln(range) levels per unit
 //   of ln(budget) and never above the certificate's lambda_max.
 // - FlightCertifiedAndSmooth: slow flights with the path and the rise limit (what the mapper
@@ -129,6 +132,58 @@ TEST(MorphRamp, PathEqualsDefinition)
     ASSERT_LE(got, want + 1e-12) << "the path is a minimum: the grid cannot find a lower value";
   }
   std::printf("[ ramp ] 300 random chains: worst |path - definition| %.2e\n", worst);
+}
+
+TEST(MorphRamp, PathIsTheLeastCandidateExactly)
+{
+  // Every candidate in turn: lambda_max at x, then k + (y - E_k) / dE + s ln(x / y) on each
+  // rising segment below the first error >= x (the formula of MorphRamp.cpp before it
+  // skipped segments).
+  auto everyCandidate = [](const std::vector<double>& e, double x, double s) {
+    const int count = static_cast<int>(e.size());
+    int kMax = 0;
+    while (kMax + 1 < count && e[kMax + 1] <= x)
+    {
+      ++kMax;
+    }
+    double lambda = kMax;
+    if (kMax + 1 < count)
+    {
+      lambda += std::max(0.0, x - e[kMax]) / (e[kMax + 1] - e[kMax]);
+    }
+    const double tiny = std::numeric_limits<double>::min();
+    for (int k = 0; k + 1 < count && e[k] < x; ++k)
+    {
+      const double dE = e[k + 1] - e[k];
+      if (!(dE > 0.0))
+      {
+        continue;
+      }
+      const double y = std::min(std::max(s * dE, std::max(e[k], tiny)), std::min(e[k + 1], x));
+      lambda = std::min(lambda, k + (y - e[k]) / dE + s * std::log(x / y));
+    }
+    return std::min(std::max(lambda, 0.0), static_cast<double>(count - 1));
+  };
+  Rng rng(2026);
+  for (int t = 0; t < 20000; ++t)
+  {
+    std::vector<double> e = randomChain(rng);
+    if (t % 4 == 1)
+    {
+      for (double& v : e)
+      {
+        v *= 1e-300; // subnormal and tiny errors
+      }
+    }
+    const double x = std::exp(randReal(rng, std::log(1e-300), std::log(1e300)) * (t % 3 == 0 ? 1.0 : 0.01));
+    const double s = t % 5 == 0 ? 1.0 / std::log(1.0 + 1e-9)
+      : t % 7 == 0            ? -0.5 // not a slope the engine uses: no skipping then
+                              : 1.0 / std::log(randReal(rng, 1.2, 5.0));
+    const double got = gmm::rampPathWithSlope(e.data(), static_cast<int>(e.size()), x, s);
+    const double want = everyCandidate(e, x, s);
+    ASSERT_TRUE(got == want || (std::isnan(got) && std::isnan(want)))
+      << "chain of " << e.size() << ", x " << x << ", s " << s << ": " << got << " vs " << want;
+  }
 }
 
 TEST(MorphRamp, PathSlopeAndCertificate)
