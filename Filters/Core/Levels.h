@@ -47,16 +47,30 @@ inline BlockShape blockShape(int widthQuads, int heightQuads, int level)
   return BlockShape::Invalid;
 }
 
-// Highest level of a block: the first one that makes it one quad (ceil(log2(max side))).
-inline int topLevel(int widthQuads, int heightQuads)
+// ceil(log2(n)) for n >= 1 (0 for n <= 1): the least m with 2^m >= n. Without a loop (a loop
+// here was 3.4 % of the instructions of a mapper-default frame: every level rule calls it).
+inline int ceilLog2(int n)
 {
-  const int side = widthQuads > heightQuads ? widthQuads : heightQuads;
+  if (n <= 1)
+  {
+    return 0;
+  }
+#if defined(__GNUC__) || defined(__clang__)
+  return 32 - __builtin_clz(static_cast<unsigned>(n - 1));
+#else
   int m = 0;
-  while ((1LL << m) < side)
+  while ((1LL << m) < n)
   {
     ++m;
   }
   return m;
+#endif
+}
+
+// Highest level of a block: the first one that makes it one quad (ceil(log2(max side))).
+inline int topLevel(int widthQuads, int heightQuads)
+{
+  return ceilLog2(widthQuads > heightQuads ? widthQuads : heightQuads);
 }
 
 // The next valid level above m for a w x h block, or -1 when m is its top level: m + 1

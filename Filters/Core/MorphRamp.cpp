@@ -19,13 +19,14 @@ double rampSlope(double range)
 
 int morphChain(const Quadtree& qt, int b, MorphChain& chain)
 {
-  // nextValidLevel unrolled: 0, the ring levels 1, 2, ... (2^m below the narrow side), then
-  // the top level.
+  // nextValidLevel unrolled: 0, the ring levels 1, 2, ... (2^m below the narrow side: m <
+  // ceilLog2(narrow)), then the top level.
   const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-  const int top = topLevel(w, h), narrow = std::min(w, h);
+  const int top = topLevel(w, h);
+  const int lastRing = std::min({ top - 1, ceilLog2(std::min(w, h)) - 1, static_cast<int>(chain.size()) - 2 });
   int count = 0;
   chain[count++] = 0;
-  for (int m = 1; m < top && (1LL << m) < narrow && count + 1 < static_cast<int>(chain.size()); ++m)
+  for (int m = 1; m <= lastRing; ++m)
   {
     chain[count++] = static_cast<int8_t>(m);
   }

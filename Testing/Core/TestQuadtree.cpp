@@ -188,6 +188,15 @@ TEST(Levels, ShapesAndTopLevelMatchRules)
         EXPECT_EQ(gmm::blockShape(w, h, m), expect) << w << "x" << h << " level " << m;
       }
     }
+  // topLevel has no loop (ceilLog2): around every power of two an int side reaches.
+  for (int k = 1; k <= 30; ++k)
+    for (int d : { -1, 0, 1 })
+    {
+      const int side = (1 << k) + d;
+      EXPECT_EQ(gmm::topLevel(side, 1), refTopLevel(side, 1)) << side;
+      EXPECT_EQ(gmm::topLevel(3, side), refTopLevel(3, side)) << side;
+    }
+  EXPECT_EQ(gmm::topLevel(0, 0), 0);
 }
 
 TEST(Levels, EdgeSamples)
