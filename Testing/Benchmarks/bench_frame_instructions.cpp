@@ -1,0 +1,146 @@
+// The mapper default's per-frame CPU work along bench_core's flight, for counting under
+// callgrind, and a hash of every frame's result, for comparing two builds.
+//
+// Why: on this shared VM the speed of one benchmark run moves by 2x or more within minutes,
+// which hides changes of 10 - 20 %. Instructions counted by callgrind do not move: the same
+// build gives the same count. They are not time (a logarithm and a division differ in
+// latency, a cache miss costs no instruction), so a change measured this way is also timed
+// when the machine allows (Documentation/benchmarks-core.md, session 18).
+//
+//   valgrind --tool=callgrind --instr-atstart=no build/Testing/Benchmarks/bench_frame_instructions 4097
+//   callgrind_annotate callgrind.out.<pid> | head -40
+//
+// Arguments: SIZE (4097) FRAMES (100) METRES_PER_FRAME (20) MAPPER (1: Engine::update on
+// geomorphing's level path and computeMorph, as the mapper's default frame; 0: the update
+// alone). Scene as bench_core's (synthetic terrain, seed 42, 30 m spacing, eye 200 m above
+// the ground ahead, looking 15 degrees down along the diagonal, 1280 x 720, fov 60, tau 1,
+// the default block size), terrain and tables on one thread. Only the frames are counted
+// (callgrind's instrumentation starts after the first frame, which allocates the caches).
+// Printed: the triangles summed over the frames and a hash of every frame's levels, merged
+// nodes, morph factors and certified bounds: a change that claims the same selections must
+// leave it as it was.
+#include "Engine.h"
+#include "Morph.h"
+#include "SyntheticTerrain.h"
+
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#endif
+#endif
+#ifndef CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_STOP_INSTRUMENTATION
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+namespace
+{
+double groundAt(const gmm::Heightfield& hf, double x, double y)
+{
+  const int i = std::max(0, std::min(hf.nx - 1, static_cast<int>(std::lround((x - hf.x0) / hf.dx))));
+  const int j = std::max(0, std::min(hf.ny - 1, static_cast<int>(std::lround((y - hf.y0) / hf.dy))));
+  const float z = hf.height(i, j);
+  return std::isfinite(z) ? z : 0.0;
+}
+
+uint64_t mix(uint64_t h, uint64_t v)
+{
+  return h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2));
+}
+
+uint64_t bitsOf(double d)
+{
+  uint64_t u = 0;
+  std::memcpy(&u, &d, sizeof u);
+  return u;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const int size = argc > 1 ? std::atoi(argv[1]) : 4097;
+  const int frames = argc > 2 ? std::atoi(argv[2]) : 100;
+  const double step = argc > 3 ? std::atof(argv[3]) : 20.0;
+  const bool mapper = argc > 4 ? std::atoi(argv[4]) != 0 : true;
+  if (size < 2 || frames < 1 || !(step >= 0.0))
+  {
+    std::fprintf(stderr, "usage: %s [SIZE >= 2] [FRAMES >= 1] [METRES_PER_FRAME >= 0] [MAPPER 0|1]\n", argv[0]);
+    return 2;
+  }
+  gmm::Heightfield hf = gmm::makeSyntheticTerrain(size, size, 30.0, 42, 1500.0, 1);
+  const double ext = (hf.nx - 1) * hf.dx;
+  const double dir = std::sqrt(0.5), pitch = -15.0 * 3.14159265358979323846 / 180.0;
+  std::vector<gmm::View> path;
+  for (int f = 0; f <= frames; ++f)
+  {
+    gmm::View v;
+    const double x = hf.x0 + 0.3 * ext + dir * step * f, y = hf.y0 + 0.3 * ext + dir * step * f;
+    double ground = 0.0;
+    for (double ahead = 0.0; ahead <= 600.0; ahead += 60.0)
+    {
+      ground = std::max(ground, groundAt(hf, x + dir * ahead, y + dir * ahead));
+    }
+    v.eye = { x, y, ground + 200.0 };
+    v.forward = { dir * std::cos(pitch), dir * std::cos(pitch), std::sin(pitch) };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 60;
+    v.viewportWidth = 1280;
+    v.viewportHeight = 720;
+    v.nearDistance = 1.0;
+    v.farDistance = 1e6;
+    path.push_back(v);
+  }
+  gmm::Engine engine;
+  const std::string err = engine.setHeightfield(std::move(hf), gmm::kDefaultBlockQuads, 1);
+  if (!err.empty())
+  {
+    std::fprintf(stderr, "setHeightfield failed: %s\n", err.c_str());
+    return 1;
+  }
+  engine.setMorphRange(mapper ? gmm::kDefaultMorphRange : 0.0);
+  gmm::MorphCache cache;
+  gmm::MorphFrame morph;
+  uint64_t hash = 0;
+  long long triangles = 0;
+  for (int f = 0; f <= frames; ++f)
+  {
+    if (f == 1)
+    {
+      CALLGRIND_START_INSTRUMENTATION;
+    }
+    const gmm::FrameStats& st = engine.update(path[f], 1.0);
+    if (mapper)
+    {
+      gmm::computeMorph(engine.heightfield(), engine.quadtree(), engine.levels(), engine.pixelFactors(),
+        gmm::morphErrorBudget(st, 1.0), cache, morph, engine.morphRamp(), &engine.drawnBlocks());
+    }
+    if (f == 0)
+    {
+      continue;
+    }
+    triangles += static_cast<long long>(st.triangles);
+    for (int b : engine.drawnBlocks())
+    {
+      hash = mix(hash, static_cast<uint64_t>(b) * 64 + static_cast<uint64_t>(engine.levels()[b] + 2));
+      hash = mix(hash, mapper ? bitsOf(morph.blockT[b]) : 0);
+    }
+    for (int n : engine.mergedNodeList())
+    {
+      hash = mix(hash, static_cast<uint64_t>(n));
+    }
+    hash = mix(hash, bitsOf(st.maxScreenError));
+    hash = mix(hash, mapper ? bitsOf(morph.maxBoundPixels) : 0);
+  }
+  CALLGRIND_STOP_INSTRUMENTATION;
+  std::printf("%d^2, %d frames, %g m a frame, %s: %lld triangles, hash %016llx\n", size, frames, step,
+    mapper ? "mapper default" : "engine update", triangles, static_cast<unsigned long long>(hash));
+  return 0;
+}
