@@ -27,6 +27,7 @@
 // the filter outputs; mapper default: update and computeMorph); update_us, Engine::update
 // alone (the mapper's frame without geomorphing: it draws the index arena, no list).
 // Concatenating was more than half the engine default's frame at 4097^2 (session 16).
+#include "BenchFlight.h"
 #include "Engine.h"
 #include "Morph.h"
 #include "SyntheticTerrain.h"
@@ -47,7 +48,6 @@ namespace
 constexpr double kSpacing = 30.0;
 constexpr int kFlightFrames = 2000;
 constexpr double kStep = 5.0;      // metres per frame
-constexpr double kAltitude = 200.0; // metres above the ground under/ahead of the camera
 constexpr int kBudgetFlightFrames = 400; // frames of BM_BudgetFlight (from the flight's start)
 // Largest DEM whose full-resolution index list is built (16385^2: 6.4 GB of indices).
 constexpr int kMaxFullResolutionSize = 16385;
@@ -61,43 +61,6 @@ int envInt(const char* name, int fallback)
 {
   const char* v = std::getenv(name);
   return v && *v ? std::atoi(v) : fallback;
-}
-
-double groundAt(const gmm::Heightfield& hf, double x, double y)
-{
-  int i = static_cast<int>(std::lround((x - hf.x0) / hf.dx));
-  int j = static_cast<int>(std::lround((y - hf.y0) / hf.dy));
-  i = std::max(0, std::min(hf.nx - 1, i));
-  j = std::max(0, std::min(hf.ny - 1, j));
-  const float z = hf.height(i, j);
-  return std::isfinite(z) ? z : 0.0;
-}
-
-std::vector<gmm::View> makeFlight(const gmm::Heightfield& hf)
-{
-  std::vector<gmm::View> path;
-  const double ext = (hf.nx - 1) * hf.dx;
-  const double dir[2] = { std::sqrt(0.5), std::sqrt(0.5) };
-  const double x0 = hf.x0 + 0.3 * ext, y0 = hf.y0 + 0.3 * ext;
-  const double pitch = -15.0 * 3.14159265358979323846 / 180.0;
-  for (int f = 0; f < kFlightFrames; ++f)
-  {
-    gmm::View v;
-    const double x = x0 + dir[0] * kStep * f, y = y0 + dir[1] * kStep * f;
-    double ground = 0;
-    for (double ahead = 0; ahead <= 600; ahead += 60)
-      ground = std::max(ground, groundAt(hf, x + dir[0] * ahead, y + dir[1] * ahead));
-    v.eye = { x, y, ground + kAltitude };
-    v.forward = { dir[0] * std::cos(pitch), dir[1] * std::cos(pitch), std::sin(pitch) };
-    v.up = { 0, 0, 1 };
-    v.fovYDegrees = 60;
-    v.viewportWidth = 1280;
-    v.viewportHeight = 720;
-    v.nearDistance = 1.0;
-    v.farDistance = 1e6;
-    path.push_back(v);
-  }
-  return path;
 }
 
 struct Scene
@@ -157,7 +120,7 @@ Scene& scene(int size, int blockQuads)
     benchmark::DoNotOptimize(full.data());
     s.fullResSeconds = seconds(t0);
   }
-  s.flight = makeFlight(hf);
+  s.flight = gmmbench::makeFlight(hf, kFlightFrames, kStep);
   s.engine = std::make_unique<gmm::Engine>();
   t0 = std::chrono::steady_clock::now();
   const std::string err = s.engine->setHeightfield(std::move(hf), blockQuads, threads);

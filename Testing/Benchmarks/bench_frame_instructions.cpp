@@ -12,13 +12,13 @@
 //
 // Arguments: SIZE (4097) FRAMES (100) METRES_PER_FRAME (20) MAPPER (1: Engine::update on
 // geomorphing's level path and computeMorph, as the mapper's default frame; 0: the update
-// alone). Scene as bench_core's (synthetic terrain, seed 42, 30 m spacing, eye 200 m above
-// the ground ahead, looking 15 degrees down along the diagonal, 1280 x 720, fov 60, tau 1,
-// the default block size), terrain and tables on one thread. Only the frames are counted
+// alone). Scene as bench_core's (synthetic terrain, seed 42, 30 m spacing, its flight from
+// BenchFlight.h, tau 1, the default block size), terrain and tables on one thread. Only the frames are counted
 // (callgrind's instrumentation starts after the first frame, which allocates the caches).
 // Printed: the triangles summed over the frames and a hash of every frame's levels, merged
 // nodes, morph factors and certified bounds: a change that claims the same selections must
 // leave it as it was.
+#include "BenchFlight.h"
 #include "Engine.h"
 #include "Morph.h"
 #include "SyntheticTerrain.h"
@@ -43,14 +43,6 @@
 
 namespace
 {
-double groundAt(const gmm::Heightfield& hf, double x, double y)
-{
-  const int i = std::max(0, std::min(hf.nx - 1, static_cast<int>(std::lround((x - hf.x0) / hf.dx))));
-  const int j = std::max(0, std::min(hf.ny - 1, static_cast<int>(std::lround((y - hf.y0) / hf.dy))));
-  const float z = hf.height(i, j);
-  return std::isfinite(z) ? z : 0.0;
-}
-
 uint64_t mix(uint64_t h, uint64_t v)
 {
   return h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2));
@@ -76,28 +68,8 @@ int main(int argc, char** argv)
     return 2;
   }
   gmm::Heightfield hf = gmm::makeSyntheticTerrain(size, size, 30.0, 42, 1500.0, 1);
-  const double ext = (hf.nx - 1) * hf.dx;
-  const double dir = std::sqrt(0.5), pitch = -15.0 * 3.14159265358979323846 / 180.0;
-  std::vector<gmm::View> path;
-  for (int f = 0; f <= frames; ++f)
-  {
-    gmm::View v;
-    const double x = hf.x0 + 0.3 * ext + dir * step * f, y = hf.y0 + 0.3 * ext + dir * step * f;
-    double ground = 0.0;
-    for (double ahead = 0.0; ahead <= 600.0; ahead += 60.0)
-    {
-      ground = std::max(ground, groundAt(hf, x + dir * ahead, y + dir * ahead));
-    }
-    v.eye = { x, y, ground + 200.0 };
-    v.forward = { dir * std::cos(pitch), dir * std::cos(pitch), std::sin(pitch) };
-    v.up = { 0, 0, 1 };
-    v.fovYDegrees = 60;
-    v.viewportWidth = 1280;
-    v.viewportHeight = 720;
-    v.nearDistance = 1.0;
-    v.farDistance = 1e6;
-    path.push_back(v);
-  }
+  // frames + 1 views: the first is the warm-up.
+  const std::vector<gmm::View> path = gmmbench::makeFlight(hf, frames + 1, step);
   gmm::Engine engine;
   const std::string err = engine.setHeightfield(std::move(hf), gmm::kDefaultBlockQuads, 1);
   if (!err.empty())
