@@ -17,24 +17,39 @@ double rampSlope(double range)
   return 1.0 / std::log(range);
 }
 
-int morphChain(const Quadtree& qt, int b, MorphChain& chain)
+namespace
 {
-  // nextValidLevel unrolled: 0, the ring levels 1, 2, ... (2^m below the narrow side: m <
-  // ceilLog2(narrow)), then the top level.
+// Block b's chain (nextValidLevel unrolled): 0, the ring levels 1 .. rings (2^m below the
+// narrow side: m < ceilLog2(narrow)), then the top level when it is above them.
+struct ChainShape
+{
+  int rings; // links 0 .. rings are the levels 0 .. rings
+  int top;
+  int links;
+};
+
+ChainShape chainShape(const Quadtree& qt, int b)
+{
   const int w = qt.blockWidth(b), h = qt.blockHeight(b);
   const int top = topLevel(w, h);
-  const int lastRing = std::min({ top - 1, ceilLog2(std::min(w, h)) - 1, static_cast<int>(chain.size()) - 2 });
-  int count = 0;
-  chain[count++] = 0;
-  for (int m = 1; m <= lastRing; ++m)
+  const int capacity = static_cast<int>(MorphChain().size());
+  const int rings = std::max(std::min({ top - 1, ceilLog2(std::min(w, h)) - 1, capacity - 2 }), 0);
+  return { rings, top, rings + 1 + (top > rings ? 1 : 0) };
+}
+} // namespace
+
+int morphChain(const Quadtree& qt, int b, MorphChain& chain)
+{
+  const ChainShape shape = chainShape(qt, b);
+  for (int m = 0; m <= shape.rings; ++m)
   {
-    chain[count++] = static_cast<int8_t>(m);
+    chain[m] = static_cast<int8_t>(m);
   }
-  if (chain[count - 1] < top)
+  if (shape.links > shape.rings + 1)
   {
-    chain[count++] = static_cast<int8_t>(top);
+    chain[shape.rings + 1] = static_cast<int8_t>(shape.top);
   }
-  return count;
+  return shape.links;
 }
 
 namespace
@@ -216,14 +231,10 @@ int levelOnChain(const MorphChain& chain, int count, double lambda, float& facto
 
 int chainIndex(const Quadtree& qt, int block, int level)
 {
-  MorphChain chain;
-  const int links = morphChain(qt, block, chain);
-  int k = 0;
-  while (k + 1 < links && chain[k] < level)
-  {
-    ++k;
-  }
-  return k;
+  // The first link at or above `level` (the last link when none is): links 0 .. rings are
+  // the levels themselves, and the one after them (if any) is the top.
+  const ChainShape shape = chainShape(qt, block);
+  return level <= 0 ? 0 : level <= shape.rings ? level : shape.links - 1;
 }
 
 double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,

@@ -15,6 +15,8 @@
 // - BudgetedFramesMorphWithinTheirError: budgeted flights (tau 0) morph within the frame's
 //   certified error (gmm::morphErrorBudget), measured within it, and pop less than when
 //   they morphed within tau alone (which morphs nothing).
+// - ChainFollowsNextValidLevel: morphChain's links are nextValidLevel's, and chainIndex finds
+//   a level's link on them, for blocks of many shapes.
 // - CachedPartErrorsAreTheirKeysAlongBudgetedFrames: budgeted frames whose blocks go back
 //   and forth between two keys; each drawn block's cached part errors equal its key's,
 //   computed from nothing.
@@ -552,25 +554,36 @@ TEST(MorphRamp, ChainFollowsNextValidLevel)
   // blocks of many sizes.
   for (int n : { 2, 3, 5, 9, 17, 40, 65, 100, 130 })
     for (int block : { 4, 8, 16, 64 })
-    {
-      gmm::Heightfield hf;
-      hf.nx = n;
-      hf.ny = n / 2 + 2;
-      hf.dx = hf.dy = 1.0;
-      hf.z.assign(static_cast<std::size_t>(hf.nx) * hf.ny, 0.0f);
-      const gmm::Quadtree qt = gmm::buildQuadtree(hf, block);
-      for (int b = 0; b < qt.blockCount(); ++b)
+      for (int rows : { n / 2 + 2, 2 }) // 2 rows: one-quad-high blocks, 1 x 1 at n = 2
       {
-        gmm::MorphChain chain;
-        const int links = gmm::morphChain(qt, b, chain);
-        int k = 0;
-        for (int m = 0; m >= 0; m = gmm::nextValidLevel(qt.blockWidth(b), qt.blockHeight(b), m), ++k)
+        gmm::Heightfield hf;
+        hf.nx = n;
+        hf.ny = rows;
+        hf.dx = hf.dy = 1.0;
+        hf.z.assign(static_cast<std::size_t>(hf.nx) * hf.ny, 0.0f);
+        const gmm::Quadtree qt = gmm::buildQuadtree(hf, block);
+        for (int b = 0; b < qt.blockCount(); ++b)
         {
-          ASSERT_LT(k, links) << n << " samples, block " << b;
-          ASSERT_EQ(chain[k], m) << n << " samples, block " << b << ", link " << k;
+          gmm::MorphChain chain;
+          const int links = gmm::morphChain(qt, b, chain);
+          int k = 0;
+          for (int m = 0; m >= 0; m = gmm::nextValidLevel(qt.blockWidth(b), qt.blockHeight(b), m), ++k)
+          {
+            ASSERT_LT(k, links) << n << " samples, block " << b;
+            ASSERT_EQ(chain[k], m) << n << " samples, block " << b << ", link " << k;
+          }
+          ASSERT_EQ(k, links) << n << " samples, block " << b;
+          // chainIndex: the first link at or above the level, else the last (by the chain).
+          for (int level = -1; level <= chain[links - 1] + 2; ++level)
+          {
+            int want = 0;
+            while (want + 1 < links && chain[want] < level)
+            {
+              ++want;
+            }
+            ASSERT_EQ(gmm::chainIndex(qt, b, level), want) << n << " samples, block " << b << ", level " << level;
+          }
         }
-        ASSERT_EQ(k, links) << n << " samples, block " << b;
       }
-    }
 }
 
