@@ -11,7 +11,9 @@
 // its corners only; when that strip does not fit the block's budget, the merged node is
 // split (its children are walked in turn) and the blocks are re-checked, until every drawn
 // block and every merged node fits. Each split goes one level down the quadtree, so this
-// ends.
+// ends. A re-check takes only the blocks whose level or a neighbour's changed since the
+// last check (the new blocks, and those the last round changed): the others' inputs are
+// those they were last found fitting with.
 #pragma once
 
 #include "ErrorTable.h"
