@@ -106,13 +106,6 @@ struct SelectionScratch
   // fixStrips: blocks under a merged node (kCoveredLevel) whose edge is too coarse for a
   // neighbour's strip; the node must be split (SelectNodes.h).
   std::vector<int> splitRequests;
-  // selectNodes' rounds after splits: the drawn blocks' levels before a round, and per
-  // block whether its level or a neighbour's changed since the last round looked at it
-  // (the marked blocks listed, to clear the marks).
-  std::vector<int8_t> levelsBefore;
-  std::vector<uint8_t> recheck;
-  std::vector<int> marked;
-  std::vector<int> recheckList;
 };
 
 // Coarsest valid level of block b whose (monotone) own error fits the budget; level 0

@@ -191,38 +191,37 @@ private:
 // with its level), so a block none of whose inputs changed since a pass last looked at it
 // is left as it is by that pass: rampBesideFinerNeighbours finds the same factor, and
 // fixStrips the same strips within budget.
-void markForRecheck(const Quadtree& qt, int b, SelectionScratch& scratch)
+void markForRecheck(const Quadtree& qt, int b, NodeScratch& ns)
 {
-  scratch.recheck.resize(static_cast<std::size_t>(qt.blockCount()), 0);
   const std::array<int, 4> neighbour = qt.blockNeighbours(b);
   for (int m : { b, neighbour[0], neighbour[1], neighbour[2], neighbour[3] })
   {
-    if (m >= 0 && !scratch.recheck[m])
+    if (m >= 0 && !ns.recheck[m])
     {
-      scratch.recheck[m] = 1;
-      scratch.marked.push_back(m);
+      ns.recheck[m] = 1;
+      ns.marked.push_back(m);
     }
   }
 }
 
 // The drawn blocks marked for recheck, in `drawn`'s order (the order a whole round takes
 // them in); the marks are cleared.
-const std::vector<int>& recheckList(const std::vector<int>& drawn, SelectionScratch& scratch)
+const std::vector<int>& recheckList(const std::vector<int>& drawn, NodeScratch& ns)
 {
-  scratch.recheckList.clear();
+  ns.recheckList.clear();
   for (int b : drawn)
   {
-    if (scratch.recheck[b])
+    if (ns.recheck[b])
     {
-      scratch.recheckList.push_back(b);
+      ns.recheckList.push_back(b);
     }
   }
-  for (int m : scratch.marked)
+  for (int m : ns.marked)
   {
-    scratch.recheck[m] = 0;
+    ns.recheck[m] = 0;
   }
-  scratch.marked.clear();
-  return scratch.recheckList;
+  ns.marked.clear();
+  return ns.recheckList;
 }
 
 } // namespace
@@ -267,6 +266,7 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   }
   ns.touched.clear();
   ns.newBlocks.clear();
+  ns.recheck.resize(blocks, 0);
   if (ns.memoView)
   {
     ns.nodeFactor.resize(qt.nodes.size());
@@ -305,14 +305,14 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     // level or a neighbour's changed since the last one (markForRecheck).
     for (std::size_t k = 0; !firstRound && k < ns.newBlocks.size(); ++k)
     {
-      markForRecheck(qt, ns.newBlocks[k], scratch);
+      markForRecheck(qt, ns.newBlocks[k], ns);
     }
-    const std::vector<int>& round = firstRound ? out.blocks : recheckList(out.blocks, scratch);
+    const std::vector<int>& round = firstRound ? out.blocks : recheckList(out.blocks, ns);
     ns.newBlocks.clear();
-    scratch.levelsBefore.resize(out.blocks.size());
+    ns.levelsBefore.resize(out.blocks.size());
     for (std::size_t k = 0; k < out.blocks.size(); ++k)
     {
-      scratch.levelsBefore[k] = out.levels[out.blocks[k]];
+      ns.levelsBefore[k] = out.levels[out.blocks[k]];
     }
     if (ramp && ramp->active())
     {
@@ -323,11 +323,11 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     {
       break;
     }
-    for (std::size_t k = 0; k < scratch.levelsBefore.size(); ++k)
+    for (std::size_t k = 0; k < ns.levelsBefore.size(); ++k)
     {
-      if (out.levels[out.blocks[k]] != scratch.levelsBefore[k])
+      if (out.levels[out.blocks[k]] != ns.levelsBefore[k])
       {
-        markForRecheck(qt, out.blocks[k], scratch);
+        markForRecheck(qt, out.blocks[k], ns);
       }
     }
     // Splitting walks nodes and lists blocks; it leaves the requests alone.

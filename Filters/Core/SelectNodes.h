@@ -47,6 +47,13 @@ struct NodeScratch
   uint32_t memoStamp = 0;
   std::vector<double> nodeFactor, blockFactor;
   std::vector<uint32_t> nodeStamp, blockStamp;
+  // Rounds after splits: the drawn blocks' levels before a round, and per block whether its
+  // level or a neighbour's changed since the last round looked at it (the marked blocks
+  // listed, to clear the marks; all clear between selections).
+  std::vector<int8_t> levelsBefore;
+  std::vector<uint8_t> recheck;
+  std::vector<int> marked;
+  std::vector<int> recheckList;
 };
 
 // While it lives, the selections in `scratch` with `projector` reuse the factors they
