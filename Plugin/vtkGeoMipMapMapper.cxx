@@ -683,7 +683,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     {
       gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(),
         gmm::morphErrorBudget(in.Engine.stats(), this->PixelError), in.MorphCache, in.Morph,
-        in.Engine.morphRamp(), &in.Engine.drawnBlocks());
+        in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs());
     }
     const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
     in.Morphing = merr.empty();

@@ -146,6 +146,9 @@ public:
   const std::vector<double>& pixelFactors() const { return factor_; }
   // The blocks drawn this frame (level >= 0), in selection order.
   const std::vector<int>& drawnBlocks() const { return drawnList_; }
+  // Per block, the configuration it is drawn with this frame (blockConfigOf; level -1 when
+  // not drawn): what computeMorph (Morph.h) would otherwise derive again.
+  const std::vector<BlockConfig>& drawnConfigs() const { return drawnConfig_; }
   const FrameStats& stats() const { return stats_; }
   const std::string& lastError() const { return lastError_; }
   const Heightfield& heightfield() const { return terrain_->hf; }

@@ -253,7 +253,7 @@ void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
 
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
-  const MorphRamp* ramp, const std::vector<int>* drawnBlocks)
+  const MorphRamp* ramp, const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs)
 {
   resetMorph(qt, out);
   const int blocks = qt.blockCount();
@@ -284,10 +284,16 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   assignSlots(drawn, cache);
   const bool limited = ramp && ramp->active();
   const double slope = limited ? ramp->slope() : 0.0;
-  auto budget = [&](int b) {
+  // Per drawn block: the stored-height error its factor allows (tau / factor), -1 when it
+  // does not morph (not in view).
+  std::vector<double>& budget = cache.budgets;
+  budget.resize(drawn.size());
+  for (std::size_t k = 0; k < drawn.size(); ++k)
+  {
+    const int b = drawn[k];
     const double f = b < static_cast<int>(factor.size()) ? factor[b] : 0.0;
-    return std::isfinite(f) && f > 0.0 ? tau / f : -1.0; // -1: does not morph
-  };
+    budget[k] = std::isfinite(f) && f > 0.0 ? tau / f : -1.0;
+  }
 
   // Edge levels and targets: an edge takes the level of the coarser block (Tessellate) and
   // moves toward the next level of the block(s) that set it.
@@ -315,7 +321,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     // edge moves, and the node's fan keeps its perimeter still), 0 on a side at full
     // resolution.
     const int b = drawn[k];
-    configs[k] = blockConfigOf(qt, levels, b);
+    configs[k] = drawnConfigs ? (*drawnConfigs)[b] : blockConfigOf(qt, levels, b);
     drawnEdges[k] = edgesOf(qt, out, b);
     for (int side = 0; side < 4; ++side)
     {
@@ -361,7 +367,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   {
     const int b = drawn[k];
     MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
-    if (out.blockTarget[b] < 0 || budget(b) < 0.0)
+    if (out.blockTarget[b] < 0 || budget[k] < 0.0)
     {
       continue;
     }
@@ -391,7 +397,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
     const PartErrors& pe = state.errors;
     morphs[k] = 1;
-    const double x = budget(b);
+    const double x = budget[k];
     double t = pe.innerFrozen ? 0.0 : linearReach(pe.inner[0], pe.inner[1], x);
     for (int side = 0; side < 4; ++side)
     {
@@ -463,7 +469,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       const double tb = out.blockT[b];
       const double* q = pe.side[side];
       const double at0 = stripBound(q, 0.0, tb), at1 = stripBound(q, 1.0, tb);
-      e.t = std::min(e.t, factorDown(linearReach(at0, at1, budget(b))));
+      e.t = std::min(e.t, factorDown(linearReach(at0, at1, budget[k])));
     }
   }
 

@@ -105,7 +105,7 @@ struct MorphCache
   std::vector<int32_t> held;            // the slots of the last frame's drawn blocks
   uint32_t frame = 0;                   // frames computed with this cache
   const void* heights = nullptr;        // the heights the errors are of (reset on change)
-  EmitScratch scratch;
+  MorphPartScratch scratch;
   // Per drawn block of a frame (scratch): its slot, its configuration as Tessellate draws
   // it and its four edges, found once and read by every pass.
   std::vector<int32_t> drawnSlots;
@@ -113,6 +113,7 @@ struct MorphCache
   std::vector<std::array<MorphEdge*, 4>> edges;
   std::vector<uint8_t> morphs;          // per drawn block: its factors were computed
   std::vector<int> chainAt;             // per drawn block: chainIndex of its level
+  std::vector<double> budgets;          // per drawn block: tau / its factor, -1 if it does not morph
 
   // The rise limit's history of block b: its drawn continuous level in the last frame, or
   // -1 when it was not drawn or that frame did not follow the path.
@@ -135,11 +136,14 @@ unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<i
 // morph rises faster than the path's slope allows since the last call with the same cache
 // (MorphRamp.h), so that factors change smoothly with the camera. `drawnBlocks`: the
 // blocks with a level >= 0 (Engine::drawnBlocks()), so that a frame costs what it draws;
-// without it they are found in `levels`. Only entries of drawn blocks and their edges are
-// written, and those of the previous frame on `out` reset.
+// without it they are found in `levels`. `drawnConfigs`: per block, the configuration each
+// drawn block is tessellated with (Engine::drawnConfigs(), blockConfigOf of `levels`), so
+// that it is not derived again; without it it is. Only entries of drawn blocks and their
+// edges are written, and those of the previous frame on `out` reset.
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
-  const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr);
+  const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr,
+  const std::vector<BlockConfig>* drawnConfigs = nullptr);
 
 // The four edges of `block` in a frame: South, East, North, West (Tessellate's Side).
 std::array<const MorphEdge*, 4> blockEdges(const Quadtree& qt, const MorphFrame& f, int block);

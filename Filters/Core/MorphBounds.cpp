@@ -11,10 +11,25 @@ namespace gmm
 
 namespace
 {
+// floor(a / b) and ceil(a / b), for b > 0.
+long long floorDiv(long long a, long long b)
+{
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+long long ceilDiv(long long a, long long b)
+{
+  return a >= 0 ? (a + b - 1) / b : -(-a / b);
+}
+
 // One triangle's contribution to a part's four corner errors: every sample it covers
 // (integer barycentric test, edges included), its drawn height S, the interpolated
 // displacements of its edge (dE) and ring (dR) vertices, against the sample's height.
 // Returns false when nodata is involved.
+// Each row visits only the samples inside: the span where the three edge functions are
+// >= 0 is solved in integers, and the functions are stepped along it in integers, so the
+// samples and their weights are exactly those of a test of every sample of the bounding
+// box (which spent half its work outside the triangle).
 bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], const double d[3],
   const bool onEdge[3], double err[4])
 {
@@ -24,36 +39,55 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], 
   {
     return true;
   }
-  const double sign = area < 0 ? -1.0 : 1.0;
+  const long long orient = area < 0 ? -1 : 1;
+  const double sign = static_cast<double>(orient);
   const double inv = 1.0 / static_cast<double>(area < 0 ? -area : area);
   const long long i0 = std::min({ I[0], I[1], I[2] }), i1 = std::max({ I[0], I[1], I[2] });
   const long long j0 = std::min({ J[0], J[1], J[2] }), j1 = std::max({ J[0], J[1], J[2] });
+  // Edge function k (opposite vertex k, from vertex `from[k]` to `to[k]`):
+  //   w_k(i, j) = (I[to] - I[from]) (j - J[from]) - (J[to] - J[from]) (i - I[from]);
+  // the sample is inside when orient * w_k >= 0 for all three.
+  static const int from[3] = { 1, 2, 0 }, to[3] = { 2, 0, 1 };
+  const double dh1 = h[1] - h[0], dh2 = h[2] - h[0]; // relative to vertex 0: a large datum costs no precision
   for (long long j = j0; j <= j1; ++j)
   {
-    for (long long i = i0; i <= i1; ++i)
+    long long lo = i0, hi = i1;
+    long long w[3], step[3];
+    for (int k = 0; k < 3; ++k)
     {
-      const long long w[3] = { (I[2] - I[1]) * (j - J[1]) - (J[2] - J[1]) * (i - I[1]),
-        (I[0] - I[2]) * (j - J[2]) - (J[0] - J[2]) * (i - I[2]),
-        (I[1] - I[0]) * (j - J[0]) - (J[1] - J[0]) * (i - I[0]) };
-      double l[3];
-      bool inside = true;
-      for (int k = 0; k < 3; ++k)
+      const long long f = from[k], g = to[k];
+      const long long di = I[g] - I[f], dj = J[g] - J[f];
+      // orient * w_k(i) = b - a (i - I[f]), with:
+      const long long a = orient * dj, b = orient * di * (j - J[f]);
+      if (a > 0)
       {
-        l[k] = sign * static_cast<double>(w[k]) * inv;
-        inside = inside && l[k] >= 0.0;
+        hi = std::min(hi, I[f] + floorDiv(b, a));
       }
-      if (!inside)
+      else if (a < 0)
       {
-        continue;
+        lo = std::max(lo, I[f] + ceilDiv(-b, -a));
       }
+      else if (b < 0)
+      {
+        hi = lo - 1; // the row is outside this edge
+      }
+      step[k] = -dj;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const long long f = from[k], g = to[k];
+      w[k] = (I[g] - I[f]) * (j - J[f]) - (J[g] - J[f]) * (lo - I[f]);
+    }
+    for (long long i = lo; i <= hi; ++i, w[0] += step[0], w[1] += step[1], w[2] += step[2])
+    {
+      const double l1 = sign * static_cast<double>(w[1]) * inv, l2 = sign * static_cast<double>(w[2]) * inv;
+      const double l0 = sign * static_cast<double>(w[0]) * inv;
       const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
-      double s = 0.0, dE = 0.0, dR = 0.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        // relative to vertex 0, so that a large datum costs no precision
-        s += l[k] * (h[k] - h[0]);
-        (onEdge[k] ? dE : dR) += l[k] * d[k];
-      }
+      double s = l1 * dh1 + l2 * dh2;
+      double dE = 0.0, dR = 0.0;
+      (onEdge[0] ? dE : dR) += l0 * d[0];
+      (onEdge[1] ? dE : dR) += l1 * d[1];
+      (onEdge[2] ? dE : dR) += l2 * d[2];
       s -= H - h[0];
       if (!std::isfinite(s) || !std::isfinite(dE) || !std::isfinite(dR))
       {
@@ -69,13 +103,8 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], 
 }
 } // namespace
 
-double stripBound(const double e[4], double te, double tb)
-{
-  return (1.0 - te) * ((1.0 - tb) * e[0] + tb * e[1]) + te * ((1.0 - tb) * e[2] + tb * e[3]);
-}
-
 PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
-  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, EmitScratch& scratch)
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, MorphPartScratch& scratch)
 {
   PartErrors out;
   updateMorphPartErrors(hf, qt, block, config, target, edgeTarget, kAllMorphParts, out, scratch);
@@ -84,11 +113,33 @@ PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
 
 void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts,
-  PartErrors& out, EmitScratch& scratch)
+  PartErrors& out, MorphPartScratch& scratch)
 {
   const int c = block % qt.blockCols, r = block / qt.blockCols;
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
-  std::vector<GridTriangle> tris;
+  const std::size_t rowLength = static_cast<std::size_t>(i1 - i0) + 1;
+  const std::size_t vertices = rowLength * (static_cast<std::size_t>(j1 - j0) + 1);
+  if (scratch.stamp.size() < vertices)
+  {
+    scratch.stamp.assign(vertices, 0);
+    scratch.displacement.resize(vertices);
+    scratch.call = 0;
+  }
+  if (++scratch.call == 0) // wrapped: no stamp may look current
+  {
+    std::fill(scratch.stamp.begin(), scratch.stamp.end(), 0u);
+    scratch.call = 1;
+  }
+  auto displacement = [&](int i, int j, double h) {
+    const std::size_t v = static_cast<std::size_t>(i - i0) + static_cast<std::size_t>(j - j0) * rowLength;
+    if (scratch.stamp[v] != scratch.call)
+    {
+      scratch.stamp[v] = scratch.call;
+      scratch.displacement[v] = blockVertexTarget(hf, qt, block, target, edgeTarget, i, j) - h;
+    }
+    return scratch.displacement[v];
+  };
+  std::vector<GridTriangle>& tris = scratch.triangles;
   for (int p = 0; p < 5; ++p)
   {
     if (!(parts & (1u << p)))
@@ -97,7 +148,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     }
     const BlockPart part = p == 0 ? BlockPart::Inner : static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + p - 1);
     tris.clear();
-    emitBlockGrid(qt, block, config, part, tris, scratch);
+    emitBlockGrid(qt, block, config, part, tris, scratch.emit);
     double err[4] = { 0.0, 0.0, 0.0, 0.0 };
     bool finite = true;
     for (const GridTriangle& t : tris)
@@ -108,7 +159,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       {
         const int i = t.v[k].i, j = t.v[k].j;
         h[k] = hf.height(i, j);
-        d[k] = blockVertexTarget(hf, qt, block, target, edgeTarget, i, j) - h[k];
+        d[k] = displacement(i, j, h[k]); // a block's triangles have their vertices in it
         onEdge[k] = i == i0 || i == i1 || j == j0 || j == j1;
       }
       if (!rasterise(hf, t, h, d, onEdge, err))

@@ -18,6 +18,8 @@
 #include "Tessellate.h"
 
 #include <array>
+#include <cstdint>
+#include <vector>
 
 namespace gmm
 {
@@ -32,17 +34,32 @@ struct PartErrors
   std::array<bool, 4> sideFrozen{ false, false, false, false };
 };
 
-// Bound of a strip at factors (te, tb): bilinear in the four corner errors.
-double stripBound(const double e[4], double te, double tb);
+// Bound of a strip at factors (te, tb): bilinear in the four corner errors. (Inline:
+// computeMorph evaluates it about 25 times a drawn block and frame.)
+inline double stripBound(const double e[4], double te, double tb)
+{
+  return (1.0 - te) * ((1.0 - tb) * e[0] + tb * e[1]) + te * ((1.0 - tb) * e[2] + tb * e[3]);
+}
 
 // Largest t in [0, 1] with stripBound(e, t, t) <= limit on all of [0, t] (0 when it does
 // not hold at 0): how far a block and an edge it sets may morph together.
 double diagonalReach(const double e[4], double limit);
 
+// Buffers of morphPartErrors, reused from call to call: the part's triangles and each
+// block vertex's displacement, found once per call although about six triangles share it.
+struct MorphPartScratch
+{
+  EmitScratch emit;
+  std::vector<GridTriangle> triangles;
+  std::vector<double> displacement; // per block vertex: target height - height
+  std::vector<uint32_t> stamp;      // per block vertex: the call that set displacement
+  uint32_t call = 0;
+};
+
 // Errors of every part of `block` drawn with `config`, its interior moving toward level
 // `target` (-1: not moving) and side s's edge toward `edgeTarget[s]` (-1: not moving).
 PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
-  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, EmitScratch& scratch);
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, MorphPartScratch& scratch);
 
 // Parts as bits of a mask: bit 0 the inner grid, bit 1 + s side strip s.
 constexpr unsigned kAllMorphParts = 0x1f;
@@ -53,6 +70,6 @@ constexpr unsigned kAllMorphParts = 0x1f;
 // corners never move), so a neighbour's change of level or target costs one strip.
 void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts,
-  PartErrors& errors, EmitScratch& scratch);
+  PartErrors& errors, MorphPartScratch& scratch);
 
 } // namespace gmm

@@ -92,7 +92,7 @@ int main(int argc, char** argv)
     if (mapper)
     {
       gmm::computeMorph(engine.heightfield(), engine.quadtree(), engine.levels(), engine.pixelFactors(),
-        gmm::morphErrorBudget(st, 1.0), cache, morph, engine.morphRamp(), &engine.drawnBlocks());
+        gmm::morphErrorBudget(st, 1.0), cache, morph, engine.morphRamp(), &engine.drawnBlocks(), &engine.drawnConfigs());
     }
     if (f == 0)
     {

@@ -10,6 +10,9 @@
 // - CertifiedWhileMorphing: random terrains and cameras; the morphed surface measured with
 //   the independent screen-error measure stays within tau, every in-frustum sample is
 //   covered, and triangles sharing a sample agree on its morphed height (no crack).
+// - PartErrorsEqualTheMorphedSurfaceSampled: morphPartErrors' corner errors equal the
+//   largest distance of each part's moved triangles, rasterised by CoreTestUtil, to the
+//   samples they cover.
 #include "CoreTestUtil.h"
 #include "Engine.h"
 #include "Levels.h"
@@ -55,6 +58,29 @@ gmm::View randomCamera(Rng& rng, const gmm::Heightfield& hf)
   v.nearDistance = 0.5;
   v.farDistance = 1e6;
   return v;
+}
+
+// A random key of block b (MorphBlockState::key): a valid level, its next valid level as
+// target or none, and per side an edge level from the block's level up to its top with a
+// coarser edge target or none.
+using MorphKey = std::array<int8_t, 10>;
+MorphKey randomMorphKey(const gmm::Quadtree& qt, int b, Rng& rng)
+{
+  const int w = qt.blockWidth(b), h = qt.blockHeight(b), top = gmm::topLevel(w, h);
+  std::vector<int> valid;
+  for (int m = 0; m <= top; ++m)
+    if (gmm::blockShape(w, h, m) != gmm::BlockShape::Invalid)
+      valid.push_back(m);
+  MorphKey k;
+  k[0] = static_cast<int8_t>(valid[randInt(rng, 0, static_cast<int>(valid.size()) - 1)]);
+  const int next = gmm::nextValidLevel(w, h, k[0]);
+  k[5] = static_cast<int8_t>(next >= 0 && randInt(rng, 0, 3) > 0 ? next : -1);
+  for (int s = 0; s < 4; ++s)
+  {
+    k[1 + s] = static_cast<int8_t>(randInt(rng, k[0], top));
+    k[6 + s] = static_cast<int8_t>(k[1 + s] < top && randInt(rng, 0, 1) ? randInt(rng, k[1 + s] + 1, top) : -1);
+  }
+  return k;
 }
 } // namespace
 
@@ -370,6 +396,69 @@ TEST(Morph, DiagonalReachIsTheFirstCrossing)
   EXPECT_GT(partial, 5000);
 }
 
+TEST(Morph, PartErrorsEqualTheMorphedSurfaceSampled)
+{
+  // morphPartErrors' corner errors against the surface they bound, sampled independently:
+  // for each part and each corner (edge vertices as drawn or at their targets, ring
+  // vertices likewise), the part's triangles (emitBlock) with their vertices moved so
+  // (blockVertexTarget, checked by HandComputed) are rasterised by sampleSurface
+  // (CoreTestUtil: every lattice point of the bounding box, its own barycentric weights),
+  // and the largest |drawn - sample| over the samples they cover is the corner's error.
+  // Random blocks, keys and block shapes (blocks of 4 to 16 quads, thin ones at the border).
+  Rng rng(2024);
+  const gmm::Heightfield hf = roughTerrain(87, 70, rng, 20.0, 20.0, 400.0, 0.05);
+  const gmm::Quadtree qt = gmm::buildQuadtree(hf, 16);
+  gmm::MorphPartScratch scratch;
+  std::vector<double> drawnZ(hf.z.size());
+  std::vector<uint32_t> idx;
+  int compared = 0;
+  for (int trial = 0; trial < 400; ++trial)
+  {
+    const int b = randInt(rng, 0, qt.blockCount() - 1);
+    const MorphKey k = randomMorphKey(qt, b, rng);
+    gmm::BlockConfig cfg;
+    cfg.level = k[0];
+    for (int s = 0; s < 4; ++s)
+      cfg.edgeLevel[s] = k[1 + s];
+    const std::array<int, 4> edgeTarget{ k[6], k[7], k[8], k[9] };
+    const gmm::PartErrors pe = gmm::morphPartErrors(hf, qt, b, cfg, k[5], edgeTarget, scratch);
+    const int c = b % qt.blockCols, r = b / qt.blockCols;
+    const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+    for (int p = 0; p < 5; ++p)
+    {
+      const gmm::BlockPart part = p == 0 ? gmm::BlockPart::Inner
+                                         : static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + p - 1);
+      idx.clear();
+      gmm::emitBlock(hf, qt, b, cfg, part, idx);
+      for (int corner = 0; corner < 4; ++corner)
+      {
+        const int e = corner / 2, rr = corner % 2; // PartErrors::side's e * 2 + r
+        if (p == 0 && e == 1)
+          continue; // the inner grid has no edge vertex
+        for (uint32_t v : idx)
+        {
+          const int i = static_cast<int>(v % hf.nx), j = static_cast<int>(v / hf.nx);
+          const double h = hf.height(i, j);
+          const bool onEdge = i == i0 || i == i1 || j == j0 || j == j1;
+          const double target = gmm::blockVertexTarget(hf, qt, b, k[5], edgeTarget, i, j);
+          drawnZ[v] = h + (onEdge ? e : rr) * (target - h);
+        }
+        const SurfaceSample surf = sampleSurface(hf, idx, drawnZ.data());
+        double expected = 0.0;
+        for (std::size_t s = 0; s < hf.z.size(); ++s)
+          if (surf.covered[s])
+            expected = std::max(expected, std::fabs(surf.z[s] - hf.z[s]));
+        const double got = p == 0 ? pe.inner[rr] : pe.side[p - 1][corner];
+        ASSERT_NEAR(got, expected, 1e-9 * (1.0 + expected))
+          << "trial " << trial << " block " << b << " part " << p << " corner " << corner;
+        ++compared;
+      }
+    }
+  }
+  std::printf("[ morph parts ] %d part corners equal the sampled surface's\n", compared);
+  EXPECT_GT(compared, 5000);
+}
+
 TEST(Morph, PartErrorsRecomputedPartByPartEqualFreshOnes)
 {
   // The morph cache recomputes only the parts a key change invalidates (changedMorphParts,
@@ -381,25 +470,9 @@ TEST(Morph, PartErrorsRecomputedPartByPartEqualFreshOnes)
   Rng rng(77);
   const gmm::Heightfield hf = roughTerrain(131, 101, rng, 20.0, 20.0, 400.0, 0.05);
   const gmm::Quadtree qt = gmm::buildQuadtree(hf, 16);
-  gmm::EmitScratch scratch;
-  using Key = std::array<int8_t, 10>;
-  auto randomKey = [&](int b) {
-    const int w = qt.blockWidth(b), h = qt.blockHeight(b), top = gmm::topLevel(w, h);
-    std::vector<int> valid;
-    for (int m = 0; m <= top; ++m)
-      if (gmm::blockShape(w, h, m) != gmm::BlockShape::Invalid)
-        valid.push_back(m);
-    Key k;
-    k[0] = static_cast<int8_t>(valid[randInt(rng, 0, static_cast<int>(valid.size()) - 1)]);
-    const int next = gmm::nextValidLevel(w, h, k[0]);
-    k[5] = static_cast<int8_t>(next >= 0 && randInt(rng, 0, 3) > 0 ? next : -1);
-    for (int s = 0; s < 4; ++s)
-    {
-      k[1 + s] = static_cast<int8_t>(randInt(rng, k[0], top));
-      k[6 + s] = static_cast<int8_t>(k[1 + s] < top && randInt(rng, 0, 1) ? randInt(rng, k[1 + s] + 1, top) : -1);
-    }
-    return k;
-  };
+  gmm::MorphPartScratch scratch;
+  using Key = MorphKey;
+  auto randomKey = [&](int b) { return randomMorphKey(qt, b, rng); };
   auto errorsOf = [&](int b, const Key& k, unsigned parts, gmm::PartErrors& e) {
     gmm::BlockConfig cfg;
     cfg.level = k[0];

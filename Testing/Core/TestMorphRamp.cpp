@@ -430,7 +430,7 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
     e.update(v, tau);
     ASSERT_EQ(e.lastError(), "");
     gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, reusedCache,
-      reused, e.morphRamp(), &e.drawnBlocks());
+      reused, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
     gmm::MorphFrame fresh;
     gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, freshCache,
       fresh, e.morphRamp());
@@ -471,7 +471,7 @@ TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
   e.setMorphRange(gmm::kDefaultMorphRange);
   gmm::MorphCache cache;
   gmm::MorphFrame frame;
-  gmm::EmitScratch scratch;
+  gmm::MorphPartScratch scratch;
   std::map<int, std::vector<std::array<int8_t, 10>>> history; // keys per block, by frame
   double startTau = 0.0;
   int returns = 0, checked = 0;
@@ -489,7 +489,7 @@ TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
     ASSERT_EQ(e.lastError(), "");
     startTau = e.stats().budgetTau;
     gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 0.0, cache, frame,
-      e.morphRamp(), &e.drawnBlocks());
+      e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
     for (int b : e.drawnBlocks())
     {
       const int slot = cache.slotOf[b];
