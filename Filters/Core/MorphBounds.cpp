@@ -25,13 +25,15 @@ long long ceilDiv(long long a, long long b)
 // One triangle's contribution to a part's four corner errors: every sample it covers
 // (integer barycentric test, edges included), its drawn height S, the interpolated
 // displacements of its edge (dE) and ring (dR) vertices, against the sample's height.
-// Returns false when nodata is involved.
-// Each row visits only the samples inside: the span where the three edge functions are
-// >= 0 is solved in integers, and the functions are stepped along it in integers, so the
-// samples and their weights are exactly those of a test of every sample of the bounding
-// box (which spent half its work outside the triangle).
+// Returns false when nodata is involved. `verticesDone`: the triangle's own vertices are
+// skipped (the caller has their contributions, vertexContribution).
+// The edge functions are stepped in integers from the bounding box's corner, so every
+// sample's weights are exact whatever the path to it. A wide triangle's rows visit only
+// the span inside it (solved in integers: a test of every sample of the bounding box spent
+// half its work outside); a narrow one, most of a morphing frame's (a level-0 half-quad
+// covers its three vertices), tests its bounding box, which costs less than solving.
 bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], const double d[3],
-  const bool onEdge[3], double err[4])
+  const bool onEdge[3], bool verticesDone, double err[4])
 {
   const long long I[3] = { t.v[0].i, t.v[1].i, t.v[2].i }, J[3] = { t.v[0].j, t.v[1].j, t.v[2].j };
   long long area = (I[1] - I[0]) * (J[2] - J[0]) - (I[2] - I[0]) * (J[1] - J[0]);
@@ -44,62 +46,104 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], 
   const double inv = 1.0 / static_cast<double>(area < 0 ? -area : area);
   const long long i0 = std::min({ I[0], I[1], I[2] }), i1 = std::max({ I[0], I[1], I[2] });
   const long long j0 = std::min({ J[0], J[1], J[2] }), j1 = std::max({ J[0], J[1], J[2] });
-  // Edge function k (opposite vertex k, from vertex `from[k]` to `to[k]`):
+  // Edge function k (opposite vertex k, from vertex `from` to `to`):
   //   w_k(i, j) = (I[to] - I[from]) (j - J[from]) - (J[to] - J[from]) (i - I[from]);
   // the sample is inside when orient * w_k >= 0 for all three.
   static const int from[3] = { 1, 2, 0 }, to[3] = { 2, 0, 1 };
+  long long stepI[3], stepJ[3], rowStart[3]; // w_k's steps along i and j, its value at (i0, j)
+  for (int k = 0; k < 3; ++k)
+  {
+    const long long di = I[to[k]] - I[from[k]], dj = J[to[k]] - J[from[k]];
+    stepI[k] = -dj;
+    stepJ[k] = di;
+    rowStart[k] = di * (j0 - J[from[k]]) - dj * (i0 - I[from[k]]);
+  }
   const double dh1 = h[1] - h[0], dh2 = h[2] - h[0]; // relative to vertex 0: a large datum costs no precision
+  auto visit = [&](long long i, long long j, const long long w[3]) {
+    if (verticesDone && (w[0] == 0) + (w[1] == 0) + (w[2] == 0) >= 2)
+    {
+      return true;
+    }
+    const double l0 = sign * static_cast<double>(w[0]) * inv;
+    const double l1 = sign * static_cast<double>(w[1]) * inv, l2 = sign * static_cast<double>(w[2]) * inv;
+    const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
+    double s = l1 * dh1 + l2 * dh2;
+    double dE = 0.0, dR = 0.0;
+    (onEdge[0] ? dE : dR) += l0 * d[0];
+    (onEdge[1] ? dE : dR) += l1 * d[1];
+    (onEdge[2] ? dE : dR) += l2 * d[2];
+    s -= H - h[0];
+    if (!std::isfinite(s) || !std::isfinite(dE) || !std::isfinite(dR))
+    {
+      return false;
+    }
+    err[0] = std::max(err[0], std::fabs(s));
+    err[1] = std::max(err[1], std::fabs(s + dR));
+    err[2] = std::max(err[2], std::fabs(s + dE));
+    err[3] = std::max(err[3], std::fabs(s + dE + dR));
+    return true;
+  };
+  constexpr long long kNarrow = 2; // bounding boxes up to this many quads wide are scanned
   for (long long j = j0; j <= j1; ++j)
   {
-    long long lo = i0, hi = i1;
-    long long w[3], step[3];
+    long long w[3] = { rowStart[0], rowStart[1], rowStart[2] };
     for (int k = 0; k < 3; ++k)
     {
-      const long long f = from[k], g = to[k];
-      const long long di = I[g] - I[f], dj = J[g] - J[f];
-      // orient * w_k(i) = b - a (i - I[f]), with:
-      const long long a = orient * dj, b = orient * di * (j - J[f]);
-      if (a > 0)
+      rowStart[k] += stepJ[k];
+    }
+    if (i1 - i0 <= kNarrow)
+    {
+      for (long long i = i0; i <= i1; ++i, w[0] += stepI[0], w[1] += stepI[1], w[2] += stepI[2])
       {
-        hi = std::min(hi, I[f] + floorDiv(b, a));
+        if (orient * w[0] >= 0 && orient * w[1] >= 0 && orient * w[2] >= 0 && !visit(i, j, w))
+        {
+          return false;
+        }
       }
-      else if (a < 0)
+      continue;
+    }
+    long long lo = i0, hi = i1;
+    for (int k = 0; k < 3; ++k)
+    {
+      // orient * w_k(i) = B + A (i - i0), which must be >= 0:
+      const long long A = orient * stepI[k], B = orient * w[k];
+      if (A > 0)
       {
-        lo = std::max(lo, I[f] + ceilDiv(-b, -a));
+        lo = std::max(lo, i0 + ceilDiv(-B, A));
       }
-      else if (b < 0)
+      else if (A < 0)
+      {
+        hi = std::min(hi, i0 + floorDiv(B, -A));
+      }
+      else if (B < 0)
       {
         hi = lo - 1; // the row is outside this edge
       }
-      step[k] = -dj;
     }
     for (int k = 0; k < 3; ++k)
     {
-      const long long f = from[k], g = to[k];
-      w[k] = (I[g] - I[f]) * (j - J[f]) - (J[g] - J[f]) * (lo - I[f]);
+      w[k] += stepI[k] * (lo - i0);
     }
-    for (long long i = lo; i <= hi; ++i, w[0] += step[0], w[1] += step[1], w[2] += step[2])
+    for (long long i = lo; i <= hi; ++i, w[0] += stepI[0], w[1] += stepI[1], w[2] += stepI[2])
     {
-      const double l1 = sign * static_cast<double>(w[1]) * inv, l2 = sign * static_cast<double>(w[2]) * inv;
-      const double l0 = sign * static_cast<double>(w[0]) * inv;
-      const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
-      double s = l1 * dh1 + l2 * dh2;
-      double dE = 0.0, dR = 0.0;
-      (onEdge[0] ? dE : dR) += l0 * d[0];
-      (onEdge[1] ? dE : dR) += l1 * d[1];
-      (onEdge[2] ? dE : dR) += l2 * d[2];
-      s -= H - h[0];
-      if (!std::isfinite(s) || !std::isfinite(dE) || !std::isfinite(dR))
+      if (!visit(i, j, w))
       {
         return false;
       }
-      err[0] = std::max(err[0], std::fabs(s));
-      err[1] = std::max(err[1], std::fabs(s + dR));
-      err[2] = std::max(err[2], std::fabs(s + dE));
-      err[3] = std::max(err[3], std::fabs(s + dE + dR));
     }
   }
   return true;
+}
+
+// What a vertex sample adds to the four corner errors where its weights are exactly 1 and
+// 0 (rasterise at that sample): the drawn surface is the sample itself (S = 0), moved by
+// its own displacement with the edge factor on the border, with the ring factor inside.
+void addVertexContribution(double d, bool onEdge, double err[4])
+{
+  const double a = std::fabs(d);
+  err[1] = std::max(err[1], onEdge ? 0.0 : a);
+  err[2] = std::max(err[2], onEdge ? a : 0.0);
+  err[3] = std::max(err[3], a);
 }
 } // namespace
 
@@ -139,6 +183,11 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     }
     return scratch.displacement[v];
   };
+  if (scratch.partStamp.size() < vertices)
+  {
+    scratch.partStamp.assign(vertices, 0);
+    scratch.part = 0;
+  }
   std::vector<GridTriangle>& tris = scratch.triangles;
   for (int p = 0; p < 5; ++p)
   {
@@ -151,18 +200,50 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     emitBlockGrid(qt, block, config, part, tris, scratch.emit);
     double err[4] = { 0.0, 0.0, 0.0, 0.0 };
     bool finite = true;
+    if (++scratch.part == 0) // wrapped: no stamp may look current
+    {
+      std::fill(scratch.partStamp.begin(), scratch.partStamp.end(), 0u);
+      scratch.part = 1;
+    }
     for (const GridTriangle& t : tris)
     {
       double h[3], d[3];
       bool onEdge[3];
+      std::size_t v[3];
+      bool finiteVertices = true;
       for (int k = 0; k < 3; ++k)
       {
         const int i = t.v[k].i, j = t.v[k].j;
         h[k] = hf.height(i, j);
         d[k] = displacement(i, j, h[k]); // a block's triangles have their vertices in it
         onEdge[k] = i == i0 || i == i1 || j == j0 || j == j1;
+        v[k] = static_cast<std::size_t>(i - i0) + static_cast<std::size_t>(j - j0) * rowLength;
+        finiteVertices = finiteVertices && std::isfinite(h[k]) && std::isfinite(d[k]);
       }
-      if (!rasterise(hf, t, h, d, onEdge, err))
+      // A vertex shared by about six triangles is measured once: in a triangle whose
+      // doubled area is a power of two (every one of a block whose sides are powers of two)
+      // its weights are exactly 1 and 0 there, so each triangle would add the same
+      // values. Where the area is not, 1 / area rounds and the triangle measures its
+      // vertices itself, as before.
+      const long long area = std::llabs(static_cast<long long>(t.v[1].i - t.v[0].i) * (t.v[2].j - t.v[0].j) -
+        static_cast<long long>(t.v[2].i - t.v[0].i) * (t.v[1].j - t.v[0].j));
+      const bool exactAtVertices = area > 0 && (area & (area - 1)) == 0 && finiteVertices;
+      if (exactAtVertices)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          if (scratch.partStamp[v[k]] != scratch.part)
+          {
+            scratch.partStamp[v[k]] = scratch.part;
+            addVertexContribution(d[k], onEdge[k], err);
+          }
+        }
+        if (area == 1)
+        {
+          continue; // a half quad covers its three vertices only (Pick's theorem)
+        }
+      }
+      if (!rasterise(hf, t, h, d, onEdge, exactAtVertices, err))
       {
         finite = false;
         break;

@@ -54,6 +54,8 @@ struct MorphPartScratch
   std::vector<double> displacement; // per block vertex: target height - height
   std::vector<uint32_t> stamp;      // per block vertex: the call that set displacement
   uint32_t call = 0;
+  std::vector<uint32_t> partStamp;  // per block vertex: the part that measured it
+  uint32_t part = 0;
 };
 
 // Errors of every part of `block` drawn with `config`, its interior moving toward level
