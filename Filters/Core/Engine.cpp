@@ -41,6 +41,8 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   levelsFromSelection_ = false;
   stats_ = FrameStats();
   drawnConfig_.assign(blocks, notDrawn());
+  drawnAround_.assign(blocks, LevelsAround{});
+  drawnError_.assign(blocks, 0.0);
   drawnList_.clear();
   // Slots: blocks first, then quadtree nodes drawn whole (slot blocks + node).
   const int nodes = static_cast<int>(terrain_->qt.nodes.size());
@@ -291,15 +293,33 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
     }
   }
   auto visit = [&](int b) {
-    const BlockConfig cfg = levels_[b] >= 0 ? blockConfigOf(t.qt, levels_, b) : notDrawn();
+    BlockConfig cfg = notDrawn();
     if (levels_[b] >= 0)
     {
       ++s.visibleBlocks;
-      const double e = blockCertifiedError(t.qt, t.table, b, cfg); // stored-height units
+      // A block whose level and neighbours' levels are those it was drawn with keeps its
+      // configuration and error (blockConfigOf depends on those five levels alone).
+      const LevelsAround around = levelsAround(t.qt, levels_, b);
+      const bool unchanged = drawnConfig_[b].level >= 0 && around == drawnAround_[b];
+      if (unchanged)
+      {
+        cfg = drawnConfig_[b];
+      }
+      else
+      {
+        cfg = blockConfigOf(t.qt, levels_, b);
+        drawnAround_[b] = around;
+        drawnError_[b] = blockCertifiedError(t.qt, t.table, b, cfg);
+      }
+      const double e = drawnError_[b]; // stored-height units
       s.maxGeometricError = std::max(s.maxGeometricError, e * heightScale_);
       if (factor && e > 0.0) // e == 0 with an infinite factor would give NaN
       {
         s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);
+      }
+      if (unchanged)
+      {
+        return;
       }
     }
     if (sameConfig(cfg, drawnConfig_[b]))

@@ -220,6 +220,11 @@ private:
   // frame regenerates only blocks whose configuration changed; their triangles live in
   // the arena's slots.
   std::vector<BlockConfig> drawnConfig_;
+  // Per drawn block, the levels its configuration was derived from (levelsAround) and the
+  // configuration's certified error (blockCertifiedError), so that a frame derives them
+  // again only for blocks whose level or a neighbour's changed.
+  std::vector<LevelsAround> drawnAround_;
+  std::vector<double> drawnError_;
   IndexArena arena_;
   std::vector<uint32_t> blockScratch_;
   EmitScratch emitScratch_; // emitBlock / emitMergedNode buffers, reused frame to frame

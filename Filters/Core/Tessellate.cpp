@@ -381,6 +381,20 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   return cfg;
 }
 
+LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels, int block)
+{
+  const std::array<int, 4> neighbour = qt.blockNeighbours(block);
+  LevelsAround around{ levels[block], kNoNeighbour, kNoNeighbour, kNoNeighbour, kNoNeighbour };
+  for (int side = 0; side < 4; ++side)
+  {
+    if (neighbour[side] >= 0)
+    {
+      around[1 + side] = levels[neighbour[side]];
+    }
+  }
+  return around;
+}
+
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   std::vector<uint32_t>& out, const std::vector<int>& merged)
 {

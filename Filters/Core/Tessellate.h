@@ -158,6 +158,13 @@ bool oneQuadFineSides(const Quadtree& qt, int block, const BlockConfig& config, 
 // own level.
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
+// The levels blockConfigOf reads: the block's, then its neighbours' in blockNeighbours'
+// order (kNoNeighbour beyond the DEM's border). Two level lists that agree on them give
+// the block the same configuration.
+using LevelsAround = std::array<int8_t, 5>;
+constexpr int8_t kNoNeighbour = -128;
+LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
+
 // Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in
 // block order, then the merged nodes listed in `merged` (their blocks at kCoveredLevel).
 // `out` is cleared first.
