@@ -26,12 +26,12 @@ long long ceilDiv(long long a, long long b)
 // (integer barycentric test, edges included), its drawn height S, the interpolated
 // displacements of its edge (dE) and ring (dR) vertices, against the sample's height.
 // Returns false when nodata is involved. `verticesDone`: the triangle's own vertices are
-// skipped (the caller has their contributions, vertexContribution).
+// skipped (the caller has added them, addVertexContribution).
 // The edge functions are stepped in integers from the bounding box's corner, so every
 // sample's weights are exact whatever the path to it. A wide triangle's rows visit only
 // the span inside it (solved in integers: a test of every sample of the bounding box spent
-// half its work outside); a narrow one, most of a morphing frame's (a level-0 half-quad
-// covers its three vertices), tests its bounding box, which costs less than solving.
+// half its work outside); a narrow one tests its bounding box, which costs less than
+// solving.
 bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], const double d[3],
   const bool onEdge[3], bool verticesDone, double err[4])
 {
@@ -174,8 +174,8 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     std::fill(scratch.stamp.begin(), scratch.stamp.end(), 0u);
     scratch.call = 1;
   }
-  auto displacement = [&](int i, int j, double h) {
-    const std::size_t v = static_cast<std::size_t>(i - i0) + static_cast<std::size_t>(j - j0) * rowLength;
+  // Block vertex v = (i, j)'s displacement at its target, found once per call.
+  auto displacement = [&](std::size_t v, int i, int j, double h) {
     if (scratch.stamp[v] != scratch.call)
     {
       scratch.stamp[v] = scratch.call;
@@ -214,17 +214,18 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       for (int k = 0; k < 3; ++k)
       {
         const int i = t.v[k].i, j = t.v[k].j;
-        h[k] = hf.height(i, j);
-        d[k] = displacement(i, j, h[k]); // a block's triangles have their vertices in it
-        onEdge[k] = i == i0 || i == i1 || j == j0 || j == j1;
+        // A block's triangles have their vertices in it.
         v[k] = static_cast<std::size_t>(i - i0) + static_cast<std::size_t>(j - j0) * rowLength;
+        h[k] = hf.height(i, j);
+        d[k] = displacement(v[k], i, j, h[k]);
+        onEdge[k] = i == i0 || i == i1 || j == j0 || j == j1;
         finiteVertices = finiteVertices && std::isfinite(h[k]) && std::isfinite(d[k]);
       }
       // A vertex shared by about six triangles is measured once: in a triangle whose
-      // doubled area is a power of two (every one of a block whose sides are powers of two)
-      // its weights are exactly 1 and 0 there, so each triangle would add the same
-      // values. Where the area is not, 1 / area rounds and the triangle measures its
-      // vertices itself, as before.
+      // doubled area is a power of two (most of them: a block's cells and fans span powers
+      // of two unless a side of the block is not one) its weights are exactly 1 and 0 there,
+      // so each such triangle would add the same values. Where the area is not, 1 / area
+      // rounds, and the triangle measures its vertices itself.
       const long long area = std::llabs(static_cast<long long>(t.v[1].i - t.v[0].i) * (t.v[2].j - t.v[0].j) -
         static_cast<long long>(t.v[2].i - t.v[0].i) * (t.v[1].j - t.v[0].j));
       const bool exactAtVertices = area > 0 && (area & (area - 1)) == 0 && finiteVertices;
