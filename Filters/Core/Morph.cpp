@@ -310,6 +310,8 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       out.blockTarget[b] = static_cast<int8_t>(nextValidLevel(w, h, m));
     }
   }
+  // The caller's configurations when they are one per block of this quadtree.
+  const bool ownConfigs = drawnConfigs && drawnConfigs->size() == static_cast<std::size_t>(blocks);
   std::vector<BlockConfig>& configs = cache.configs;
   std::vector<std::array<MorphEdge*, 4>>& drawnEdges = cache.edges;
   configs.resize(drawn.size());
@@ -321,7 +323,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     // edge moves, and the node's fan keeps its perimeter still), 0 on a side at full
     // resolution.
     const int b = drawn[k];
-    configs[k] = drawnConfigs ? (*drawnConfigs)[b] : blockConfigOf(qt, levels, b);
+    configs[k] = ownConfigs ? (*drawnConfigs)[b] : blockConfigOf(qt, levels, b);
     drawnEdges[k] = edgesOf(qt, out, b);
     for (int side = 0; side < 4; ++side)
     {
