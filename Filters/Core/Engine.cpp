@@ -317,10 +317,6 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
       {
         s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);
       }
-      if (unchanged)
-      {
-        return;
-      }
     }
     if (sameConfig(cfg, drawnConfig_[b]))
     {

@@ -22,21 +22,27 @@ long long ceilDiv(long long a, long long b)
   return a >= 0 ? (a + b - 1) / b : -(-a / b);
 }
 
+// Twice the signed area of t (the sign gives its orientation).
+long long doubledArea(const GridTriangle& t)
+{
+  const long long I[3] = { t.v[0].i, t.v[1].i, t.v[2].i }, J[3] = { t.v[0].j, t.v[1].j, t.v[2].j };
+  return (I[1] - I[0]) * (J[2] - J[0]) - (I[2] - I[0]) * (J[1] - J[0]);
+}
+
 // One triangle's contribution to a part's four corner errors: every sample it covers
 // (integer barycentric test, edges included), its drawn height S, the interpolated
 // displacements of its edge (dE) and ring (dR) vertices, against the sample's height.
-// Returns false when nodata is involved. `verticesDone`: the triangle's own vertices are
-// skipped (the caller has added them, addVertexContribution).
+// `area`: doubledArea(t). Returns false when nodata is involved. `verticesDone`: the
+// triangle's own vertices are skipped (the caller has added them, addVertexContribution).
 // The edge functions are stepped in integers from the bounding box's corner, so every
 // sample's weights are exact whatever the path to it. A wide triangle's rows visit only
 // the span inside it (solved in integers: a test of every sample of the bounding box spent
 // half its work outside); a narrow one tests its bounding box, which costs less than
 // solving.
-bool rasterise(const Heightfield& hf, const GridTriangle& t, const double h[3], const double d[3],
-  const bool onEdge[3], bool verticesDone, double err[4])
+bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, const double h[3],
+  const double d[3], const bool onEdge[3], bool verticesDone, double err[4])
 {
   const long long I[3] = { t.v[0].i, t.v[1].i, t.v[2].i }, J[3] = { t.v[0].j, t.v[1].j, t.v[2].j };
-  long long area = (I[1] - I[0]) * (J[2] - J[0]) - (I[2] - I[0]) * (J[1] - J[0]);
   if (area == 0)
   {
     return true;
@@ -163,31 +169,19 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
   const std::size_t rowLength = static_cast<std::size_t>(i1 - i0) + 1;
   const std::size_t vertices = rowLength * (static_cast<std::size_t>(j1 - j0) + 1);
-  if (scratch.stamp.size() < vertices)
+  if (scratch.displacement.size() < vertices)
   {
-    scratch.stamp.assign(vertices, 0);
     scratch.displacement.resize(vertices);
-    scratch.call = 0;
   }
-  if (++scratch.call == 0) // wrapped: no stamp may look current
-  {
-    std::fill(scratch.stamp.begin(), scratch.stamp.end(), 0u);
-    scratch.call = 1;
-  }
+  scratch.displaced.begin(vertices);
   // Block vertex v = (i, j)'s displacement at its target, found once per call.
   auto displacement = [&](std::size_t v, int i, int j, double h) {
-    if (scratch.stamp[v] != scratch.call)
+    if (scratch.displaced.mark(v))
     {
-      scratch.stamp[v] = scratch.call;
       scratch.displacement[v] = blockVertexTarget(hf, qt, block, target, edgeTarget, i, j) - h;
     }
     return scratch.displacement[v];
   };
-  if (scratch.partStamp.size() < vertices)
-  {
-    scratch.partStamp.assign(vertices, 0);
-    scratch.part = 0;
-  }
   std::vector<GridTriangle>& tris = scratch.triangles;
   for (int p = 0; p < 5; ++p)
   {
@@ -200,11 +194,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     emitBlockGrid(qt, block, config, part, tris, scratch.emit);
     double err[4] = { 0.0, 0.0, 0.0, 0.0 };
     bool finite = true;
-    if (++scratch.part == 0) // wrapped: no stamp may look current
-    {
-      std::fill(scratch.partStamp.begin(), scratch.partStamp.end(), 0u);
-      scratch.part = 1;
-    }
+    scratch.measured.begin(vertices);
     for (const GridTriangle& t : tris)
     {
       double h[3], d[3];
@@ -226,16 +216,15 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       // of two unless a side of the block is not one) its weights are exactly 1 and 0 there,
       // so each such triangle would add the same values. Where the area is not, 1 / area
       // rounds, and the triangle measures its vertices itself.
-      const long long area = std::llabs(static_cast<long long>(t.v[1].i - t.v[0].i) * (t.v[2].j - t.v[0].j) -
-        static_cast<long long>(t.v[2].i - t.v[0].i) * (t.v[1].j - t.v[0].j));
+      const long long signedArea = doubledArea(t);
+      const long long area = std::llabs(signedArea);
       const bool exactAtVertices = area > 0 && (area & (area - 1)) == 0 && finiteVertices;
       if (exactAtVertices)
       {
         for (int k = 0; k < 3; ++k)
         {
-          if (scratch.partStamp[v[k]] != scratch.part)
+          if (scratch.measured.mark(v[k]))
           {
-            scratch.partStamp[v[k]] = scratch.part;
             addVertexContribution(d[k], onEdge[k], err);
           }
         }
@@ -244,7 +233,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
           continue; // a half quad covers its three vertices only (Pick's theorem)
         }
       }
-      if (!rasterise(hf, t, h, d, onEdge, exactAtVertices, err))
+      if (!rasterise(hf, t, signedArea, h, d, onEdge, exactAtVertices, err))
       {
         finite = false;
         break;

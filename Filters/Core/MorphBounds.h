@@ -17,6 +17,7 @@
 #include "Quadtree.h"
 #include "Tessellate.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -45,6 +46,32 @@ inline double stripBound(const double e[4], double te, double tb)
 // not hold at 0): how far a block and an edge it sets may morph together.
 double diagonalReach(const double e[4], double limit);
 
+// Marks on block vertices that are all cleared at once: begin(n) starts a new generation
+// over at least n vertices, and mark(v) is true the first time v is marked in it.
+struct VertexMarks
+{
+  std::vector<uint32_t> stamp; // per vertex: the generation that marked it
+  uint32_t generation = 0;
+  void begin(std::size_t n)
+  {
+    if (stamp.size() < n)
+    {
+      stamp.resize(n, 0u);
+    }
+    if (++generation == 0) // wrapped: no stamp may look current
+    {
+      std::fill(stamp.begin(), stamp.end(), 0u);
+      generation = 1;
+    }
+  }
+  bool mark(std::size_t v)
+  {
+    const bool first = stamp[v] != generation;
+    stamp[v] = generation;
+    return first;
+  }
+};
+
 // Buffers of morphPartErrors, reused from call to call: the part's triangles and each
 // block vertex's displacement, found once per call although about six triangles share it.
 struct MorphPartScratch
@@ -52,10 +79,8 @@ struct MorphPartScratch
   EmitScratch emit;
   std::vector<GridTriangle> triangles;
   std::vector<double> displacement; // per block vertex: target height - height
-  std::vector<uint32_t> stamp;      // per block vertex: the call that set displacement
-  uint32_t call = 0;
-  std::vector<uint32_t> partStamp;  // per block vertex: the part that measured it
-  uint32_t part = 0;
+  VertexMarks displaced;            // per call: the vertices whose displacement is set
+  VertexMarks measured;             // per part: the vertices measured once (exact weights)
 };
 
 // Errors of every part of `block` drawn with `config`, its interior moving toward level
