@@ -316,6 +316,8 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
   qt.rowUpperHalf = upperHalfBands(qt.blockRows);
   resizeOnHugePages(qt.blockBox, qt.blockCount());
   resizeOnHugePages(qt.blockHasNodata, qt.blockCount());
+  qt.blockWidths.resize(qt.blockCount());
+  qt.blockHeights.resize(qt.blockCount());
   // Rows of blocks in parallel: each writes its own blocks' entries.
   parallelChunks(static_cast<std::size_t>(qt.blockRows), 1, threads, [&](std::size_t first, std::size_t last) {
     for (int r = static_cast<int>(first); r < static_cast<int>(last); ++r)
@@ -327,6 +329,8 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
         qt.blockBox[b] =
           sampleBox(hf, qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1], nodata);
         qt.blockHasNodata[b] = nodata ? 1 : 0;
+        qt.blockWidths[b] = qt.colStart[c + 1] - qt.colStart[c];
+        qt.blockHeights[b] = qt.rowStart[r + 1] - qt.rowStart[r];
       }
     }
   });

@@ -48,6 +48,10 @@ struct Quadtree
   std::vector<QuadtreeNode> nodes; // nodes[0] is the root
   std::vector<Box> blockBox;       // per block, world bounds (z over valid samples)
   std::vector<uint8_t> blockHasNodata; // per block: any NaN sample inside (borders included)
+  // Per block: its width and height in quads (colStart and rowStart differences), read by
+  // every per-block step of a frame: a lookup instead of block % blockCols and
+  // block / blockCols (2.6 % of a 4097^2 mapper-default frame's instructions).
+  std::vector<int> blockWidths, blockHeights;
   // Which samples of each block with nodata are nodata (borders included), one bit each,
   // row by row from the block's first row and column, from bit 0 of word
   // nodataBitsAt[block]. Both empty when the DEM has none. What draws such a block at a
@@ -67,16 +71,8 @@ struct Quadtree
 
   int blockCount() const { return blockCols * blockRows; }
   int blockIndex(int col, int row) const { return row * blockCols + col; }
-  int blockWidth(int block) const // in quads
-  {
-    const int c = block % blockCols;
-    return colStart[c + 1] - colStart[c];
-  }
-  int blockHeight(int block) const // in quads
-  {
-    const int r = block / blockCols;
-    return rowStart[r + 1] - rowStart[r];
-  }
+  int blockWidth(int block) const { return blockWidths[block]; } // in quads
+  int blockHeight(int block) const { return blockHeights[block]; }
   // Whether sample (i, j) of `block` (within its rectangle, borders included) is nodata.
   bool sampleIsNodata(int block, int i, int j) const
   {
