@@ -79,11 +79,11 @@ double rampPath(const double* error, int count, double budget, double range)
   return rampPathWithSlope(error, count, budget, rampSlope(range));
 }
 
-double rampPathWithSlope(const double* error, int count, double budget, double s)
+double rampPathWithSlope(const double* error, int count, double budget, double s, double ceiling)
 {
   if (count <= 0)
   {
-    return 0.0;
+    return std::min(ceiling, 0.0);
   }
   // lambda_max at the budget itself (y = x): the coarsest link within the budget, and how
   // far toward the next one the certificate allows.
@@ -97,6 +97,9 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
   {
     lambda += std::max(0.0, budget - error[kMax]) / (error[kMax + 1] - error[kMax]);
   }
+  // With a ceiling the running minimum starts there: every candidate ruled out below is
+  // above it too, so the minimum is min(ceiling, path) as a last min would give it.
+  lambda = std::min(lambda, ceiling);
   // Smaller budgets y on each rising segment: h(y) = k + (y - E_k) / dE + s ln(x / y) is
   // convex in y, lowest at y = s dE (clamped to the segment). Flat segments (equal errors)
   // are jumps of lambda_max: their ends are the neighbouring segments' ends.
@@ -105,7 +108,9 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
   // frame's time; the least candidate is usually on a low segment, which is taken first).
   // The minimum is the same double as taking every candidate in turn.
   const double tiny = std::numeric_limits<double>::min();
-  for (int k = 0; k + 1 < count && error[k] < budget; ++k)
+  // Candidates on link k are at least k (linear >= k, and s ln(x / y) >= 0 for s >= 0):
+  // none from links at or above the running minimum can lower it.
+  for (int k = 0; k + 1 < count && error[k] < budget && (s < 0.0 || k < lambda); ++k)
   {
     const double dE = error[k + 1] - error[k];
     if (!(dE > 0.0))
@@ -121,7 +126,7 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
     }
     lambda = std::min(lambda, linear + s * std::log(ratio));
   }
-  return std::min(std::max(lambda, 0.0), static_cast<double>(count - 1));
+  return std::min(ceiling, std::min(std::max(lambda, 0.0), static_cast<double>(count - 1)));
 }
 
 double rampPathFloor(int j, double errorJ, double budget, double s)
@@ -181,12 +186,13 @@ int chainErrors(const MorphChain& chain, int links, ErrorOf errorOf, std::array<
 
 // rampPath over the chain's errors errorOf(level) (chainErrors).
 template <typename ErrorOf>
-double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double slope)
+double pathOverChain(const MorphChain& chain, int links, ErrorOf errorOf, double budget, double slope,
+  double ceiling = std::numeric_limits<double>::infinity())
 {
   std::array<double, 32> error; // not zero-filled: only the first `count` are read (a fill
                                 // was 1 % of a mapper-default frame's instructions)
   const int count = chainErrors(chain, links, errorOf, error);
-  return rampPathWithSlope(error.data(), count, budget, slope);
+  return rampPathWithSlope(error.data(), count, budget, slope, ceiling);
 }
 } // namespace
 
@@ -244,11 +250,11 @@ double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int lin
 }
 
 double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,
-  int nbSide, int nbLevel, double nbBudget, double slope)
+  int nbSide, int nbLevel, double nbBudget, double slope, double ceiling)
 {
   return pathOverChain(chain, links,
     [&](int v) { return v <= nbLevel ? 0.0 : double(t.strip(nb, nbSide, nbLevel, v)); }, nbBudget,
-    slope);
+    slope, ceiling);
 }
 
 } // namespace gmm

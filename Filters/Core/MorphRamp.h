@@ -87,8 +87,11 @@ int morphChain(const Quadtree& qt, int b, MorphChain& chain);
 // lambda(budget) for the errors of a chain's levels (error[0..count), non-decreasing and
 // finite: a chain ends at its first level that is not allowed), in [0, count - 1].
 double rampPath(const double* error, int count, double budget, double range);
-// The same with the slope s = rampSlope(range) given.
-double rampPathWithSlope(const double* error, int count, double budget, double s);
+// The same with the slope s = rampSlope(range) given; with a `ceiling`, min(ceiling, the
+// path): the same double, found sooner where the ceiling rules candidates out (a path's
+// candidates on link k are at least k, so links at or above the ceiling are not looked at).
+double rampPathWithSlope(const double* error, int count, double budget, double s,
+  double ceiling = std::numeric_limits<double>::infinity());
 
 // A floor under rampPathWithSlope for errors that are 0 below index j (>= 1) and errorJ
 // (finite, > 0) at j, whatever the errors above: j - 1 + min(1, s, budget / errorJ). No
@@ -125,9 +128,10 @@ double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int lin
 // edge is sampled at b's level once that is coarser, so the neighbour's strip error is a
 // function of b's level (0 while b's level is at most nbLevel). A coarse neighbour that the strip does not fit
 // is refined by fixStrips (SelectLevels.h) at once, which pops; this path gets there
-// smoothly instead.
+// smoothly instead. With a `ceiling`, min(ceiling, that lambda) (rampPathWithSlope).
 double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,
-  int nbSide, int nbLevel, double nbBudget, double slope);
+  int nbSide, int nbLevel, double nbBudget, double slope,
+  double ceiling = std::numeric_limits<double>::infinity());
 
 // The level and factor of continuous level `lambda` on `chain` (count levels).
 int levelOnChain(const MorphChain& chain, int count, double lambda, float& factor);

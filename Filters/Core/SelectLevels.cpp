@@ -140,8 +140,7 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
       {
         continue;
       }
-      lambda = std::min(lambda, rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, nbLevel,
-                                  budget[nb], ramp.slope()));
+      lambda = rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, nbLevel, budget[nb], ramp.slope(), lambda);
     }
     if (lambda < ramp.lambda[b])
     {

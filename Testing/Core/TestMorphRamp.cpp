@@ -3,7 +3,8 @@
 // - PathByHand: chains worked out by hand from the definition.
 // - PathEqualsDefinition: rampPath against a brute-force minimum of its definition over a
 //   dense grid of budgets, on random chains (equal errors included).
-// - PathIsTheLeastCandidateExactly: rampPath skips segments by a bound on their logarithm;
+// - PathIsTheLeastCandidateExactly: rampPath skips segments by a bound on their logarithm
+//   (and, given a ceiling, the links at or above it);
 //   it must return the very double that taking every segment's candidate in turn gives
 //   (written out here), over random chains, budgets from 1e-300 to 1e300 and ranges near 1.
 // - PathSlopeAndCertificate: the path never moves faster than 1 / ln(range) levels per unit
@@ -185,6 +186,19 @@ TEST(MorphRamp, PathIsTheLeastCandidateExactly)
     const double want = everyCandidate(e, x, s);
     ASSERT_TRUE(got == want || (std::isnan(got) && std::isnan(want)))
       << "chain of " << e.size() << ", x " << x << ", s " << s << ": " << got << " vs " << want;
+    // With a ceiling (what rampBesideFinerNeighbours passes: the block's lambda so far), the
+    // same double as min(ceiling, every candidate): below, at and above the path, on and
+    // between links.
+    const int n = static_cast<int>(e.size());
+    for (double ceiling : { randReal(rng, -0.5, n + 0.5), want, std::floor(want), std::floor(want) + 1.0,
+           want - 1e-12, randReal(rng, 0.0, std::max(want, 0.0)), static_cast<double>(randInt(rng, 0, n)) })
+    {
+      const double gotBelow = gmm::rampPathWithSlope(e.data(), n, x, s, ceiling);
+      const double wantBelow = std::min(ceiling, want);
+      ASSERT_TRUE(gotBelow == wantBelow || (std::isnan(gotBelow) && std::isnan(wantBelow)))
+        << "chain of " << n << ", x " << x << ", s " << s << ", ceiling " << ceiling << ": " << gotBelow
+        << " vs " << wantBelow;
+    }
   }
 }
 
