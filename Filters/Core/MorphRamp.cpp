@@ -40,11 +40,18 @@ ChainShape chainShape(const Quadtree& qt, int b)
 
 int morphChain(const Quadtree& qt, int b, MorphChain& chain)
 {
+  // Links 0 .. rings are the levels themselves: copied whole from 0, 1, 2, ... (a loop of
+  // byte stores was 2.4 % of a 4097^2 mapper-default frame's instructions).
+  static constexpr MorphChain kLevels = [] {
+    MorphChain c{};
+    for (std::size_t m = 0; m < c.size(); ++m)
+    {
+      c[m] = static_cast<int8_t>(m);
+    }
+    return c;
+  }();
   const ChainShape shape = chainShape(qt, b);
-  for (int m = 0; m <= shape.rings; ++m)
-  {
-    chain[m] = static_cast<int8_t>(m);
-  }
+  chain = kLevels;
   if (shape.links > shape.rings + 1)
   {
     chain[shape.rings + 1] = static_cast<int8_t>(shape.top);
