@@ -73,6 +73,9 @@ void checkTree(const gmm::Heightfield& hf, int maxQ)
     for (int c = 0; c < qt.blockCols; ++c)
     {
       const int b = qt.blockIndex(c, r);
+      // The per-block sizes every frame reads, against the bands they come from.
+      ASSERT_EQ(qt.blockWidth(b), qt.colStart[c + 1] - qt.colStart[c]);
+      ASSERT_EQ(qt.blockHeight(b), qt.rowStart[r + 1] - qt.rowStart[r]);
       const gmm::Box& box = qt.blockBox[b];
       bool anyNaN = false;
       double zlo = std::numeric_limits<double>::infinity(), zhi = -zlo;
