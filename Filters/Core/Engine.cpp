@@ -51,7 +51,7 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   nodeNow_.assign(nodes, 0);
   drawnMerged_.clear();
   nodeScratch_ = NodeScratch();
-  ramp_.nodeTop.clear(); // its memo is of the old terrain's blocks
+  ramp_.forgetTerrain(); // its memos are of the old terrain's blocks
   indices_.clear();
   indicesCurrent_ = true;
 }

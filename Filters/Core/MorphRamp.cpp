@@ -136,6 +136,65 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
   return std::min(ceiling, std::min(std::max(lambda, 0.0), static_cast<double>(count - 1)));
 }
 
+void rampPathConstants(const double* error, int count, double s, double* constant)
+{
+  const double tiny = std::numeric_limits<double>::min();
+  constant[0] = std::numeric_limits<double>::infinity();
+  for (int k = 0; k + 1 < count; ++k)
+  {
+    const double dE = error[k + 1] - error[k];
+    if (!(dE > 0.0))
+    {
+      constant[k] = std::numeric_limits<double>::infinity(); // a jump of lambda_max
+      continue;
+    }
+    // The segment's best y, as rampPathWithSlope takes it on a segment wholly below x.
+    const double y = std::min(std::max(s * dE, std::max(error[k], tiny)), error[k + 1]);
+    constant[k] = k + (y - error[k]) / dE - s * std::log(y);
+  }
+}
+
+double rampPathFromConstants(const double* error, const double* constant, int count, double budget, double s)
+{
+  if (count <= 0)
+  {
+    return 0.0;
+  }
+  int kMax = 0;
+  while (kMax + 1 < count && error[kMax + 1] <= budget)
+  {
+    ++kMax;
+  }
+  double lambda = kMax;
+  if (kMax + 1 < count)
+  {
+    lambda += std::max(0.0, budget - error[kMax]) / (error[kMax + 1] - error[kMax]);
+  }
+  // Segments wholly below x (k < kMax) take their best y; segment kMax, when x cuts it,
+  // takes it only when it is at most x (else y = x, whose candidate is lambda_max itself).
+  double least = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < kMax; ++k)
+  {
+    least = std::min(least, constant[k]);
+  }
+  if (kMax + 1 < count && error[kMax] < budget)
+  {
+    const double dE = error[kMax + 1] - error[kMax];
+    const double tiny = std::numeric_limits<double>::min();
+    if (dE > 0.0 && std::max(s * dE, std::max(error[kMax], tiny)) <= budget)
+    {
+      least = std::min(least, constant[kMax]);
+    }
+  }
+  // No logarithm where its lower bound already rules the candidates out (x >= 1; below 1
+  // the logarithm is negative and any finite constant may win).
+  if (least <= std::numeric_limits<double>::max() && !(budget >= 1.0 && least + s * lnAtLeast(budget) >= lambda))
+  {
+    lambda = std::min(lambda, least + s * std::log(budget));
+  }
+  return std::min(std::max(lambda, 0.0), static_cast<double>(count - 1));
+}
+
 double rampPathFloor(int j, double errorJ, double budget, double s)
 {
   // For y < errorJ the certificate's level is j - 1 + y / errorJ, and ln(x / y) >= 1 - y / x,
@@ -251,9 +310,25 @@ int chainIndex(const Quadtree& qt, int block, int level)
 }
 
 double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,
-  double slope)
+  MorphRamp& ramp)
 {
-  return pathOverChain(chain, links, [&](int m) { return double(t.own(b, m)); }, budget, slope);
+  const double s = ramp.slope();
+  const std::size_t stride = static_cast<std::size_t>(std::max(t.levels, 1));
+  const std::size_t size = stride * (t.levels > 0 ? t.ownError.size() / t.levels : 0);
+  if (!(ramp.ownPathSlope == s) || ramp.ownPathErrors != t.ownError.data() || ramp.ownPath.size() != size)
+  {
+    ramp.ownPath.assign(size, std::numeric_limits<double>::quiet_NaN());
+    ramp.ownPathErrors = t.ownError.data();
+    ramp.ownPathSlope = s;
+  }
+  std::array<double, 32> error; // only the first `count` are read
+  const int count = chainErrors(chain, links, [&](int m) { return double(t.own(b, m)); }, error);
+  double* constant = ramp.ownPath.data() + static_cast<std::size_t>(b) * stride;
+  if (std::isnan(constant[0]))
+  {
+    rampPathConstants(error.data(), count, s, constant);
+  }
+  return rampPathFromConstants(error.data(), constant, count, budget, s);
 }
 
 double rampedLambdaBeside(const ErrorTable& t, const MorphChain& chain, int links, int nb,

@@ -62,6 +62,20 @@ struct MorphRamp
   // `nodeTopRange`; the engine clears it when its terrain changes.
   std::vector<double> nodeTop;
   double nodeTopRange = std::numeric_limits<double>::quiet_NaN();
+  // Per block, memo of its own path's segment constants (rampPathConstants, ErrorTable::levels
+  // a block: ownPath[b * levels + k]; NaN first: not computed yet) for the errors at
+  // `ownPathErrors` and the slope `ownPathSlope`: the path's logarithms of a block's own
+  // errors are the same every frame.
+  std::vector<double> ownPath;
+  const float* ownPathErrors = nullptr;
+  double ownPathSlope = std::numeric_limits<double>::quiet_NaN();
+  // Drops the memos (a new terrain: they are of the old one's blocks).
+  void forgetTerrain()
+  {
+    nodeTop.clear();
+    ownPath.clear();
+    ownPathErrors = nullptr;
+  }
   bool active() const { return range > 1.0 && range <= std::numeric_limits<double>::max(); }
   // rampSlope(range), remembered: a frame asks it for every block and neighbour.
   double slope() const
@@ -93,6 +107,19 @@ double rampPath(const double* error, int count, double budget, double range);
 double rampPathWithSlope(const double* error, int count, double budget, double s,
   double ceiling = std::numeric_limits<double>::infinity());
 
+// The path in closed form, for a slope s > 0: on a rising segment k (E_k < E_k+1) whose
+// candidate's best y (s dE clamped to the segment) lies within the budget x, the candidate
+// is k + (y - E_k) / dE + s ln x - s ln y = C_k + s ln x, and C_k does not depend on x. So
+// lambda(x) = min(lambda_max(x), s ln x + the least C_k of those segments): one logarithm
+// for a budget instead of one for each segment it could not rule out.
+// rampPathConstants writes C_k for k in [0, max(count - 1, 1)) into `constant` (+inf for a
+// segment that does not rise, and in constant[0] for a chain of fewer than two links).
+void rampPathConstants(const double* error, int count, double s, double* constant);
+// rampPathWithSlope(error, count, budget, s) from those constants: equal up to rounding
+// (ln x - ln y against ln(x / y); about 1e-16 of s |ln y|), and never above lambda_max(x),
+// which it computes as rampPathWithSlope does.
+double rampPathFromConstants(const double* error, const double* constant, int count, double budget, double s);
+
 // A floor under rampPathWithSlope for errors that are 0 below index j (>= 1) and errorJ
 // (finite, > 0) at j, whatever the errors above: j - 1 + min(1, s, budget / errorJ). No
 // logarithm: it lets a caller skip a path that cannot come below a level it already has.
@@ -119,9 +146,10 @@ double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ram
 int chainIndex(const Quadtree& qt, int block, int level);
 
 // lambda of block b (its chain from morphChain) on the path of its own errors for error
-// budget `budget` (stored-height units); `slope` is rampSlope(range) (MorphRamp::slope()).
+// budget `budget` (stored-height units), on ramp's path (ramp.active()): from the block's
+// constants (rampPathFromConstants), memoised in `ramp` the first time the block is asked.
 double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int links, double budget,
-  double slope);
+  MorphRamp& ramp);
 
 // lambda of block b (its chain) on the path that keeps the strip of a finer neighbour `nb` (level
 // `nbLevel`, its side `nbSide` facing b) within that neighbour's budget as b coarsens: the

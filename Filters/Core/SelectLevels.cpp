@@ -91,7 +91,7 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
   }
   MorphChain chain;
   const int links = morphChain(qt, b, chain);
-  const double lambda = rampedLambda(t, b, chain, links, budget, ramp->slope());
+  const double lambda = rampedLambda(t, b, chain, links, budget, *ramp);
   float factor = 0.0f;
   const int m = levelOnChain(chain, links, lambda, factor);
   ramp->lambda[b] = lambda;

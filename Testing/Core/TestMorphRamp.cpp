@@ -202,6 +202,102 @@ TEST(MorphRamp, PathIsTheLeastCandidateExactly)
   }
 }
 
+TEST(MorphRamp, PathFromConstantsIsThePath)
+{
+  // The closed form the selection uses for a block's own path (rampedLambda) against the
+  // path taken candidate by candidate (PathIsTheLeastCandidateExactly): equal up to the
+  // rounding of ln x - ln y against ln(x / y), and never above lambda_max (the certificate).
+  Rng rng(31);
+  double worst = 0.0;
+  int moved = 0;
+  for (int t = 0; t < 20000; ++t)
+  {
+    std::vector<double> e = randomChain(rng);
+    if (t % 4 == 1)
+    {
+      for (double& v : e)
+      {
+        v *= 1e-300; // subnormal and tiny errors
+      }
+    }
+    const int n = static_cast<int>(e.size());
+    const double x = t % 6 == 0 ? e[randInt(rng, 0, n - 1)] // on a link's error
+      : std::exp(randReal(rng, std::log(1e-300), std::log(1e300)) * (t % 3 == 0 ? 1.0 : 0.01));
+    const double s = t % 5 == 0 ? 1.0 / std::log(1.0 + 1e-6) : gmm::rampSlope(randReal(rng, 1.2, 5.0));
+    std::vector<double> constant(std::max(n - 1, 1), std::numeric_limits<double>::quiet_NaN());
+    gmm::rampPathConstants(e.data(), n, s, constant.data());
+    const double got = gmm::rampPathFromConstants(e.data(), constant.data(), n, x, s);
+    const double want = gmm::rampPathWithSlope(e.data(), n, x, s);
+    // Rounding: a few ulps of each term of C_k + s ln x (ln y down to about -750).
+    const double tol = 1e-14 * (n + s * (std::fabs(std::log(x)) + 750.0));
+    ASSERT_NEAR(got, want, tol) << "chain of " << n << ", x " << x << ", s " << s;
+    ASSERT_LE(got, lambdaMax(e, x)) << "chain of " << n << ", x " << x << ", s " << s;
+    ASSERT_GE(got, 0.0);
+    worst = std::max(worst, std::fabs(got - want));
+    moved += want < lambdaMax(e, x) - 1e-3; // the path, not lambda_max, decided
+  }
+  EXPECT_GT(moved, 2000) << "too few budgets where the path is below lambda_max to test it";
+  std::printf("[ ramp ] closed form: worst |difference| %.2e over 20000 chains\n", worst);
+  for (double x : { 0.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN() })
+  {
+    const double e[] = { 0.0, 1.0, 1.5, 4.0 }, s = gmm::rampSlope(3.0);
+    double constant[3];
+    gmm::rampPathConstants(e, 4, s, constant);
+    const double want = gmm::rampPathWithSlope(e, 4, x, s);
+    EXPECT_EQ(gmm::rampPathFromConstants(e, constant, 4, x, s), want) << x;
+  }
+}
+
+TEST(MorphRamp, OwnPathMemoFollowsRangeAndTerrain)
+{
+  // The engine keeps each block's path constants from frame to frame (MorphRamp::ownPath):
+  // after a change of range or of terrain its levels and path must be a fresh engine's.
+  const gmm::Heightfield a = gmm::makeSyntheticTerrain(257, 257, 30.0, 1, 1500.0, 1);
+  const gmm::Heightfield b = gmm::makeSyntheticTerrain(257, 257, 30.0, 2, 900.0, 1);
+  gmm::Engine kept;
+  ASSERT_EQ(kept.setHeightfield(a, 16, 1), "");
+  std::shared_ptr<const gmm::Terrain> ta = kept.terrain();
+  gmm::Engine other;
+  ASSERT_EQ(other.setHeightfield(b, 16, 1), "");
+  std::shared_ptr<const gmm::Terrain> tb = other.terrain();
+  const double ext = 256 * 30.0;
+  gmm::View v;
+  v.eye = { 0.1 * ext, 0.5 * ext, 1900.0 };
+  v.forward = { std::cos(0.35), 0.0, -std::sin(0.35) };
+  v.fovYDegrees = 50.0;
+  int differ = 0;
+  std::vector<double> last;
+  for (const auto& [terrain, range] : std::vector<std::pair<std::shared_ptr<const gmm::Terrain>, double>>{
+         { ta, 3.0 }, { ta, 20.0 }, { ta, 8.0 }, { tb, 8.0 }, { tb, 3.0 }, { ta, 3.0 } })
+  {
+    if (kept.terrain() != terrain)
+    {
+      kept.setTerrain(terrain);
+    }
+    kept.setMorphRange(range);
+    gmm::Engine fresh;
+    fresh.setTerrain(terrain);
+    fresh.setMorphRange(range);
+    kept.update(v, 1.0);
+    fresh.update(v, 1.0);
+    ASSERT_NE(kept.morphRamp(), nullptr);
+    ASSERT_EQ(kept.levels(), fresh.levels()) << "range " << range;
+    for (int blk : kept.drawnBlocks())
+    {
+      ASSERT_EQ(kept.morphRamp()->lambda[blk], fresh.morphRamp()->lambda[blk]) << "range " << range << ", block " << blk;
+    }
+    // Stale constants would show as another path: each step must change the path.
+    std::vector<double> path;
+    for (int blk : kept.drawnBlocks())
+    {
+      path.push_back(kept.morphRamp()->lambda[blk]);
+    }
+    differ += path != last;
+    last = path;
+  }
+  EXPECT_EQ(differ, 6) << "each range and terrain must give another path to test anything";
+}
+
 TEST(MorphRamp, PathSlopeAndCertificate)
 {
   Rng rng(78);
