@@ -30,10 +30,9 @@ struct ChainShape
 
 ChainShape chainShape(const Quadtree& qt, int b)
 {
-  const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-  const int top = topLevel(w, h);
+  const int top = qt.blockTopLevel(b);
   const int capacity = static_cast<int>(MorphChain().size());
-  const int rings = std::max(std::min({ top - 1, ceilLog2(std::min(w, h)) - 1, capacity - 2 }), 0);
+  const int rings = std::max(std::min({ top - 1, qt.blockRingLevelCount(b) - 1, capacity - 2 }), 0);
   return { rings, top, rings + 1 + (top > rings ? 1 : 0) };
 }
 } // namespace

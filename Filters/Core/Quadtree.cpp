@@ -318,6 +318,8 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
   resizeOnHugePages(qt.blockHasNodata, qt.blockCount());
   qt.blockWidths.resize(qt.blockCount());
   qt.blockHeights.resize(qt.blockCount());
+  qt.blockTopLevels.resize(qt.blockCount());
+  qt.blockRingLevels.resize(qt.blockCount());
   // Rows of blocks in parallel: each writes its own blocks' entries.
   parallelChunks(static_cast<std::size_t>(qt.blockRows), 1, threads, [&](std::size_t first, std::size_t last) {
     for (int r = static_cast<int>(first); r < static_cast<int>(last); ++r)
@@ -331,6 +333,8 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
         qt.blockHasNodata[b] = nodata ? 1 : 0;
         qt.blockWidths[b] = qt.colStart[c + 1] - qt.colStart[c];
         qt.blockHeights[b] = qt.rowStart[r + 1] - qt.rowStart[r];
+        qt.blockTopLevels[b] = static_cast<uint8_t>(topLevel(qt.blockWidths[b], qt.blockHeights[b]));
+        qt.blockRingLevels[b] = static_cast<uint8_t>(ceilLog2(std::min(qt.blockWidths[b], qt.blockHeights[b])));
       }
     }
   });

@@ -52,6 +52,11 @@ struct Quadtree
   // every per-block step of a frame: a lookup instead of block % blockCols and
   // block / blockCols (2.6 % of a 4097^2 mapper-default frame's instructions).
   std::vector<int> blockWidths, blockHeights;
+  // Per block: its top level (topLevel of its width and height) and how many levels draw it
+  // as a ring (levels 0 .. ringLevels - 1; ceilLog2 of its narrow side), for the frame's
+  // per-block level rules (geomorphing's chain, the strips' ring tests): a lookup instead of
+  // two leading-zero counts and a min.
+  std::vector<uint8_t> blockTopLevels, blockRingLevels;
   // Which samples of each block with nodata are nodata (borders included), one bit each,
   // row by row from the block's first row and column, from bit 0 of word
   // nodataBitsAt[block]. Both empty when the DEM has none. What draws such a block at a
@@ -73,6 +78,11 @@ struct Quadtree
   int blockIndex(int col, int row) const { return row * blockCols + col; }
   int blockWidth(int block) const { return blockWidths[block]; } // in quads
   int blockHeight(int block) const { return blockHeights[block]; }
+  int blockTopLevel(int block) const { return blockTopLevels[block]; }
+  int blockRingLevelCount(int block) const { return blockRingLevels[block]; }
+  // Whether `block` at level m is a ring: blockShape(width, height, m) == BlockShape::Ring
+  // (2^m below both sides, i.e. m < ceilLog2 of the narrow side).
+  bool blockIsRingAt(int block, int m) const { return m >= 0 && m < blockRingLevels[block]; }
   // Whether sample (i, j) of `block` (within its rectangle, borders included) is nodata.
   bool sampleIsNodata(int block, int i, int j) const
   {

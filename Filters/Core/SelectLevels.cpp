@@ -59,16 +59,6 @@ double visibleFactor(double f)
   return std::max(f, std::numeric_limits<double>::min());
 }
 
-int blockTop(const Quadtree& qt, int b)
-{
-  return topLevel(qt.blockWidth(b), qt.blockHeight(b));
-}
-
-bool ringLevel(const Quadtree& qt, int b, int m)
-{
-  return blockShape(qt.blockWidth(b), qt.blockHeight(b), m) == BlockShape::Ring;
-}
-
 } // namespace
 
 int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
@@ -87,7 +77,7 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
 {
   if (!ramp || !ramp->active())
   {
-    return coarsestWithin(t, b, blockTop(qt, b), budget);
+    return coarsestWithin(t, b, qt.blockTopLevel(b), budget);
   }
   MorphChain chain;
   const int links = morphChain(qt, b, chain);
@@ -119,7 +109,7 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
     {
       const int nb = neighbour[side];
       const int nbLevel = nb >= 0 ? levels[nb] : -1;
-      if (nbLevel < 0 || !ringLevel(qt, nb, nbLevel) || qt.sideAtFullResolutionAt(b, levels[b], side, nb, nbLevel))
+      if (nbLevel < 0 || !qt.blockIsRingAt(nb, nbLevel) || qt.sideAtFullResolutionAt(b, levels[b], side, nb, nbLevel))
       {
         continue; // no strip of the neighbour joins this edge, or it does not follow b's level
       }
@@ -168,7 +158,7 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
   }
   for (int b : drawn)
   {
-    if (levels[b] > 0 || (levels[b] == 0 && ringLevel(qt, b, 0)))
+    if (levels[b] > 0 || (levels[b] == 0 && qt.blockIsRingAt(b, 0)))
     {
       work.push_back(b);
       queued[b] = 1;
@@ -180,7 +170,7 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
     work.pop_back();
     queued[b] = 0;
     const int m = levels[b];
-    if (m < 0 || !ringLevel(qt, b, m))
+    if (m < 0 || !qt.blockIsRingAt(b, m))
     {
       continue; // one-quad and thin blocks have corner-only edges: nothing to join
     }
@@ -433,7 +423,7 @@ double blockCertifiedError(const Quadtree& qt, const ErrorTable& table, int bloc
 {
   const int m = config.level;
   double e = table.ownExact(block, m);
-  if (ringLevel(qt, block, m))
+  if (qt.blockIsRingAt(block, m))
   {
     for (int side = 0; side < 4; ++side)
     {

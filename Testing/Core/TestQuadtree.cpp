@@ -76,6 +76,14 @@ void checkTree(const gmm::Heightfield& hf, int maxQ)
       // The per-block sizes every frame reads, against the bands they come from.
       ASSERT_EQ(qt.blockWidth(b), qt.colStart[c + 1] - qt.colStart[c]);
       ASSERT_EQ(qt.blockHeight(b), qt.rowStart[r + 1] - qt.rowStart[r]);
+      // And the level rules looked up per block, against the shape rules themselves.
+      ASSERT_EQ(qt.blockTopLevel(b), gmm::topLevel(qt.blockWidth(b), qt.blockHeight(b)));
+      for (int m = -1; m <= 32; ++m)
+      {
+        ASSERT_EQ(qt.blockIsRingAt(b, m),
+          gmm::blockShape(qt.blockWidth(b), qt.blockHeight(b), m) == gmm::BlockShape::Ring)
+          << "block " << b << ", level " << m;
+      }
       const gmm::Box& box = qt.blockBox[b];
       bool anyNaN = false;
       double zlo = std::numeric_limits<double>::infinity(), zhi = -zlo;
