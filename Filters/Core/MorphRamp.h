@@ -141,6 +141,15 @@ double rampTopBudget(const double* error, int count, double s);
 // Memoised in `ramp` (for its range) and computed only for the nodes asked about.
 double rampNodeTopBudget(const Quadtree& qt, const ErrorTable& t, MorphRamp& ramp, int node);
 
+// The first link of a chain (from morphChain, `links` of them) whose level is above `level`
+// (>= 0); `links` when none is. Every link but the last is its own index (0, 1, 2, ...), so
+// this is one comparison instead of a walk along the chain.
+inline int firstLinkAbove(const MorphChain& chain, int links, int level)
+{
+  const int j = level + 1 < links - 1 ? level + 1 : links - 1;
+  return chain[j] > level ? j : j + 1;
+}
+
 // Position of valid level `level` on the block's chain (the computeMorph rise limit's
 // continuous level is this plus the factor).
 int chainIndex(const Quadtree& qt, int block, int level);

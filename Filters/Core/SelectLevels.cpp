@@ -115,11 +115,7 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
       }
       // The beside path's errors are 0 up to the first link coarser than the neighbour; a
       // floor from that link alone skips most paths (rampPathFloor).
-      int j = 0;
-      while (j < links && chain[j] <= nbLevel)
-      {
-        ++j;
-      }
+      const int j = firstLinkAbove(chain, links, nbLevel);
       if (j >= links)
       {
         continue; // never coarser than the neighbour: the strip does not change

@@ -683,6 +683,16 @@ TEST(MorphRamp, ChainFollowsNextValidLevel)
             ASSERT_EQ(chain[k], m) << n << " samples, block " << b << ", link " << k;
           }
           ASSERT_EQ(k, links) << n << " samples, block " << b;
+          // firstLinkAbove: the first link whose level is above, by walking the chain.
+          for (int level = 0; level <= chain[links - 1] + 2; ++level)
+          {
+            int want = 0;
+            while (want < links && chain[want] <= level)
+            {
+              ++want;
+            }
+            ASSERT_EQ(gmm::firstLinkAbove(chain, links, level), want) << n << " samples, block " << b << ", level " << level;
+          }
           // chainIndex: the first link at or above the level, else the last (by the chain).
           for (int level = -1; level <= chain[links - 1] + 2; ++level)
           {
