@@ -135,6 +135,14 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
   auto isVertex = [&](const long long w[3], bool vertexRow) {
     return verticesDone && vertexRow && (w[0] == 0) + (w[1] == 0) + (w[2] == 0) >= 2;
   };
+  // The sample's weights l and the unmorphed surface's distance above it, S - H.
+  auto gap = [&](long long i, long long j, const long long w[3], double l[3]) {
+    l[0] = sign * static_cast<double>(w[0]) * inv;
+    l[1] = sign * static_cast<double>(w[1]) * inv;
+    l[2] = sign * static_cast<double>(w[2]) * inv;
+    const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
+    return (l[1] * dh1 + l[2] * dh2) - (H - h[0]);
+  };
   if (!onEdge[0] && !onEdge[1] && !onEdge[2] && finiteSamples)
   {
     double e0 = 0.0, e1 = 0.0; // max |S| and |S + dR| over the triangle
@@ -143,15 +151,12 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
       {
         return true;
       }
-      const double l0 = sign * static_cast<double>(w[0]) * inv;
-      const double l1 = sign * static_cast<double>(w[1]) * inv, l2 = sign * static_cast<double>(w[2]) * inv;
-      const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
-      double s = l1 * dh1 + l2 * dh2;
+      double l[3];
+      const double s = gap(i, j, w, l);
       double dR = 0.0;
-      dR += l0 * d[0];
-      dR += l1 * d[1];
-      dR += l2 * d[2];
-      s -= H - h[0];
+      dR += l[0] * d[0];
+      dR += l[1] * d[1];
+      dR += l[2] * d[2];
       e0 = std::max(e0, std::fabs(s));
       e1 = std::max(e1, std::fabs(s + dR));
       return true;
@@ -167,15 +172,12 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
     {
       return true;
     }
-    const double l0 = sign * static_cast<double>(w[0]) * inv;
-    const double l1 = sign * static_cast<double>(w[1]) * inv, l2 = sign * static_cast<double>(w[2]) * inv;
-    const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
-    double s = l1 * dh1 + l2 * dh2;
+    double l[3];
+    const double s = gap(i, j, w, l);
     double dE = 0.0, dR = 0.0;
-    (onEdge[0] ? dE : dR) += l0 * d[0];
-    (onEdge[1] ? dE : dR) += l1 * d[1];
-    (onEdge[2] ? dE : dR) += l2 * d[2];
-    s -= H - h[0];
+    (onEdge[0] ? dE : dR) += l[0] * d[0];
+    (onEdge[1] ? dE : dR) += l[1] * d[1];
+    (onEdge[2] ? dE : dR) += l[2] * d[2];
     if (!finiteSamples && (!std::isfinite(s) || !std::isfinite(dE) || !std::isfinite(dR)))
     {
       return false;

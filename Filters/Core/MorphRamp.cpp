@@ -80,6 +80,26 @@ double lnAtLeast(double r)
 }
 } // namespace
 
+namespace
+{
+// lambda_max at the budget itself (y = x): the coarsest link within the budget (kMax), and
+// how far toward the next one the certificate allows. count >= 1.
+double lambdaMaxAt(const double* error, int count, double budget, int& kMax)
+{
+  kMax = 0;
+  while (kMax + 1 < count && error[kMax + 1] <= budget)
+  {
+    ++kMax;
+  }
+  double lambda = kMax;
+  if (kMax + 1 < count)
+  {
+    lambda += std::max(0.0, budget - error[kMax]) / (error[kMax + 1] - error[kMax]);
+  }
+  return lambda;
+}
+} // namespace
+
 double rampPath(const double* error, int count, double budget, double range)
 {
   return rampPathWithSlope(error, count, budget, rampSlope(range));
@@ -91,18 +111,8 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
   {
     return std::min(ceiling, 0.0);
   }
-  // lambda_max at the budget itself (y = x): the coarsest link within the budget, and how
-  // far toward the next one the certificate allows.
   int kMax = 0;
-  while (kMax + 1 < count && error[kMax + 1] <= budget)
-  {
-    ++kMax;
-  }
-  double lambda = kMax;
-  if (kMax + 1 < count)
-  {
-    lambda += std::max(0.0, budget - error[kMax]) / (error[kMax + 1] - error[kMax]);
-  }
+  double lambda = lambdaMaxAt(error, count, budget, kMax);
   // With a ceiling the running minimum starts there: every candidate ruled out below is
   // above it too, so the minimum is min(ceiling, path) as a last min would give it.
   lambda = std::min(lambda, ceiling);
@@ -160,15 +170,7 @@ double rampPathFromConstants(const double* error, const double* constant, int co
     return 0.0;
   }
   int kMax = 0;
-  while (kMax + 1 < count && error[kMax + 1] <= budget)
-  {
-    ++kMax;
-  }
-  double lambda = kMax;
-  if (kMax + 1 < count)
-  {
-    lambda += std::max(0.0, budget - error[kMax]) / (error[kMax + 1] - error[kMax]);
-  }
+  double lambda = lambdaMaxAt(error, count, budget, kMax);
   // Segments wholly below x (k < kMax) take their best y; segment kMax, when x cuts it,
   // takes it only when it is at most x (else y = x, whose candidate is lambda_max itself).
   double least = std::numeric_limits<double>::infinity();
