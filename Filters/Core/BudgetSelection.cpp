@@ -36,7 +36,7 @@ bool allowed(const ErrorTable& t, int b, int m)
 
 int coarsestAllowed(const Quadtree& qt, const ErrorTable& t, int b)
 {
-  for (int m = topLevel(qt.blockWidth(b), qt.blockHeight(b)); m > 0; --m)
+  for (int m = qt.blockTopLevel(b); m > 0; --m)
   {
     if (allowed(t, b, m))
     {
@@ -73,7 +73,7 @@ double projectedError(const Quadtree& qt, const ErrorTable& t, const std::vector
 int blockToRefine(const Quadtree& qt, const ErrorTable& t, std::vector<int8_t>& levels, int b)
 {
   const int m = levels[b];
-  if (blockShape(qt.blockWidth(b), qt.blockHeight(b), m) != BlockShape::Ring)
+  if (!qt.blockIsRingAt(b, m))
   {
     return b; // no strips: only its own error
   }

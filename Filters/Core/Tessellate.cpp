@@ -362,7 +362,7 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   BlockConfig cfg;
   cfg.level = levels[block];
   const std::array<int, 4> neighbour = qt.blockNeighbours(block);
-  const int top = topLevel(qt.blockWidth(block), qt.blockHeight(block));
+  const int top = qt.blockTopLevel(block);
   for (int side = 0; side < 4; ++side)
   {
     const int nb = neighbour[side];
