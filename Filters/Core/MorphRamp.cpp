@@ -98,6 +98,13 @@ double lambdaMaxAt(const double* error, int count, double budget, int& kMax)
   }
   return lambda;
 }
+
+// Segment k's best y before it is clamped to the segment's top (or the budget): s dE, and
+// at least E_k (and the least normal double, so that ln y is finite). dE = E_k+1 - E_k > 0.
+double bestYFromBelow(const double* error, int k, double dE, double s)
+{
+  return std::max(s * dE, std::max(error[k], std::numeric_limits<double>::min()));
+}
 } // namespace
 
 double rampPath(const double* error, int count, double budget, double range)
@@ -123,7 +130,6 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
   // lower bound of their logarithm (lnAtLeast) and cost no log (logs were 7 % of a 4097^2
   // frame's time; the least candidate is usually on a low segment, which is taken first).
   // The minimum is the same double as taking every candidate in turn.
-  const double tiny = std::numeric_limits<double>::min();
   // Candidates on link k are at least k (linear >= k, and s ln(x / y) >= 0 for s >= 0):
   // none from links at or above the running minimum can lower it.
   for (int k = 0; k + 1 < count && error[k] < budget && (s < 0.0 || k < lambda); ++k)
@@ -133,8 +139,7 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
     {
       continue;
     }
-    const double lo = std::max(error[k], tiny), hi = std::min(error[k + 1], budget);
-    const double y = std::min(std::max(s * dE, lo), hi);
+    const double y = std::min(bestYFromBelow(error, k, dE, s), std::min(error[k + 1], budget));
     const double linear = k + (y - error[k]) / dE, ratio = budget / y; // ratio >= 1: log >= 0
     if (s >= 0.0 && (linear >= lambda || linear + s * lnAtLeast(ratio) > lambda + 1e-9))
     {
@@ -147,7 +152,6 @@ double rampPathWithSlope(const double* error, int count, double budget, double s
 
 void rampPathConstants(const double* error, int count, double s, double* constant)
 {
-  const double tiny = std::numeric_limits<double>::min();
   constant[0] = std::numeric_limits<double>::infinity();
   for (int k = 0; k + 1 < count; ++k)
   {
@@ -158,7 +162,7 @@ void rampPathConstants(const double* error, int count, double s, double* constan
       continue;
     }
     // The segment's best y, as rampPathWithSlope takes it on a segment wholly below x.
-    const double y = std::min(std::max(s * dE, std::max(error[k], tiny)), error[k + 1]);
+    const double y = std::min(bestYFromBelow(error, k, dE, s), error[k + 1]);
     constant[k] = k + (y - error[k]) / dE - s * std::log(y);
   }
 }
@@ -181,8 +185,7 @@ double rampPathFromConstants(const double* error, const double* constant, int co
   if (kMax + 1 < count && error[kMax] < budget)
   {
     const double dE = error[kMax + 1] - error[kMax];
-    const double tiny = std::numeric_limits<double>::min();
-    if (dE > 0.0 && std::max(s * dE, std::max(error[kMax], tiny)) <= budget)
+    if (dE > 0.0 && bestYFromBelow(error, kMax, dE, s) <= budget)
     {
       least = std::min(least, constant[kMax]);
     }
@@ -314,11 +317,13 @@ double rampedLambda(const ErrorTable& t, int b, const MorphChain& chain, int lin
   MorphRamp& ramp)
 {
   const double s = ramp.slope();
-  const std::size_t stride = static_cast<std::size_t>(std::max(t.levels, 1));
-  const std::size_t size = stride * (t.levels > 0 ? t.ownError.size() / t.levels : 0);
-  if (!(ramp.ownPathSlope == s) || ramp.ownPathErrors != t.ownError.data() || ramp.ownPath.size() != size)
+  // One constant for each of a block's ErrorTable::levels entries (a chain has at most that
+  // many links): the memo is as long as the own errors.
+  const std::size_t stride = static_cast<std::size_t>(t.levels);
+  if (!(ramp.ownPathSlope == s) || ramp.ownPathErrors != t.ownError.data() ||
+    ramp.ownPath.size() != t.ownError.size())
   {
-    ramp.ownPath.assign(size, std::numeric_limits<double>::quiet_NaN());
+    ramp.ownPath.assign(t.ownError.size(), std::numeric_limits<double>::quiet_NaN());
     ramp.ownPathErrors = t.ownError.data();
     ramp.ownPathSlope = s;
   }
