@@ -170,13 +170,16 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
     {
       continue; // one-quad and thin blocks have corner-only edges: nothing to join
     }
-    const BlockConfig cfg = blockConfigOf(qt, levels, b);
     const std::array<int, 4> neighbour = qt.blockNeighbours(b);
     for (int side = 0; side < 4; ++side)
     {
-      const int n = cfg.edgeLevel[side];
       const int nb = neighbour[side];
-      if (nb < 0 || n <= m || t.strip(b, side, m, n) <= budget[b])
+      if (nb < 0)
+      {
+        continue;
+      }
+      const int n = edgeLevelOf(qt, levels, b, m, side, nb);
+      if (n <= m || t.strip(b, side, m, n) <= budget[b])
       {
         continue;
       }

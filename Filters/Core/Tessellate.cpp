@@ -362,21 +362,9 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   BlockConfig cfg;
   cfg.level = levels[block];
   const std::array<int, 4> neighbour = qt.blockNeighbours(block);
-  const int top = qt.blockTopLevel(block);
   for (int side = 0; side < 4; ++side)
   {
-    const int nb = neighbour[side];
-    int nl = nb >= 0 ? levels[nb] : -1;
-    if (qt.sideAtFullResolutionAt(block, cfg.level, side, nb, nl))
-    {
-      cfg.edgeLevel[side] = 0; // beside nodata that reaches the border rows: every sample
-      continue;
-    }
-    if (nl == kCoveredLevel)
-    {
-      nl = top; // corners only, as the merged node's perimeter has them
-    }
-    cfg.edgeLevel[side] = nl > cfg.level ? nl : cfg.level;
+    cfg.edgeLevel[side] = edgeLevelOf(qt, levels, block, cfg.level, side, neighbour[side]);
   }
   return cfg;
 }

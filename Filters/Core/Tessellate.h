@@ -158,6 +158,24 @@ bool oneQuadFineSides(const Quadtree& qt, int block, const BlockConfig& config, 
 // own level.
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
+// One side of blockConfigOf: the edge level of `side` of `block` drawn at `level`, with
+// `neighbour` (blockNeighbours' entry, -1 at the DEM's border) across it. Inline: the
+// selection's strip pass (fixStrips) asks it for the sides of every block it rechecks.
+inline int edgeLevelOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
+  int level, int side, int neighbour)
+{
+  int nl = neighbour >= 0 ? levels[neighbour] : -1;
+  if (qt.sideAtFullResolutionAt(block, level, side, neighbour, nl))
+  {
+    return 0; // beside nodata that reaches the border rows: every sample
+  }
+  if (nl == kCoveredLevel)
+  {
+    nl = qt.blockTopLevel(block); // corners only, as the merged node's perimeter has them
+  }
+  return nl > level ? nl : level;
+}
+
 // The levels blockConfigOf reads: the block's, then its neighbours' in blockNeighbours'
 // order (kNoNeighbour beyond the DEM's border). Two level lists that agree on them give
 // the block the same configuration.
