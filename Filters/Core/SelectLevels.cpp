@@ -11,6 +11,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace gmm
 {
 
@@ -285,6 +289,16 @@ BoxProjector::BoxProjector(const View& view, const glm::dmat4& toWorld, ErrorMet
   for (int c = 0; c < 3; ++c)
     for (int a = 0; a < 3; ++a)
       diagonal_ = diagonal_ && (a == c || column_[c][a] == 0.0);
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int lane = 0; lane < 2; ++lane)
+    {
+      lanes_.scale[a][lane] = column_[a][a];
+      lanes_.offset[a][lane] = column_[3][a];
+      lanes_.eye[a][lane] = eye_[a];
+      lanes_.forward[a][lane] = forward_[a];
+    }
+  }
 }
 
 double BoxProjector::factor(const Box& box) const
@@ -299,39 +313,67 @@ double BoxProjector::factor(const Box& box) const
     const double d = robustLength(centre - view_.eye);
     return visibleFactor(ppu_ / std::max(d, view_.nearDistance));
   }
-  // The world image of the box is the parallelepiped spanned by its transformed corners;
-  // distance is convex and depth linear, so both extremes are at corners. Each corner is
-  // toWorld * (x, y, z, 1) summed in glm's order, (c0 x + c1 y) + (c2 z + c3), from
-  // per-axis terms: the very same doubles with 6 products instead of 8 matrix-vector
-  // products. They are laid out axis by axis (q[axis][corner]) so that the corners are
-  // computed side by side (2.7x faster than a loop of vectors, the same values); the
-  // largest distance is the root of the largest square (sqrt is monotone and correctly
-  // rounded: the same value).
+  double f = 0.0;
+  return diagonal_ && diagonalFactor(box, f) ? f : cornerFactor(box);
+}
+
+// The world image of the box is the parallelepiped spanned by its transformed corners;
+// distance is convex and depth linear, so both extremes are at corners. Each corner is
+// toWorld * (x, y, z, 1) summed in glm's order, (c0 x + c1 y) + (c2 z + c3), from per-axis
+// terms: the very same doubles with 6 products instead of 8 matrix-vector products.
+//
+// With a diagonal toWorld, the corner term of axis a is (column_[a][a] * (lo or hi) +
+// column_[3][a]) - eye_[a], the same doubles as cornerFactor's (the other columns add exact
+// zeros). Rounded addition is monotone in each operand, so the largest (q0^2 + q1^2) + q2^2
+// over the corners is the sum of each axis's largest square, and the smallest depth the sum
+// of each axis's smallest term: the same values as the corner loop, from 6 terms instead of
+// 24. False when a square overflowed or underflowed: cornerFactor then takes each length
+// robustly. (An axis's lo and hi terms are computed side by side where SSE2 is: below.)
+bool BoxProjector::diagonalFactor(const Box& box, double& factor) const
+{
   const double lo[3] = { box.lo.x, box.lo.y, box.lo.z }, hi[3] = { box.hi.x, box.hi.y, box.hi.z };
-  if (diagonal_)
+  double square[3], depthTerm[3];
+#if defined(__SSE2__)
+  // The lo and hi terms of an axis side by side in the two lanes of a register: the same
+  // IEEE operations on the same operands, so the same doubles. MAXSD (hi, lo) is
+  // hi > lo ? hi : lo as std::max(lo, hi) is lo < hi ? hi : lo, and MINSD (hi, lo) is
+  // hi < lo ? hi : lo as std::min(lo, hi) is: the same choice for every input, NaN included.
+  for (int a = 0; a < 3; ++a)
   {
-    // Corner term of axis a: (column_[a][a] * (lo or hi) + column_[3][a]) - eye_[a], the
-    // same doubles as below (the other columns add exact zeros). Rounded addition is
-    // monotone in each operand, so the largest (q0^2 + q1^2) + q2^2 over the corners is the
-    // sum of each axis's largest square, and the smallest depth the sum of each axis's
-    // smallest term: the same values as the corner loop, from 6 terms instead of 24.
-    double square[3], depthTerm[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      const double qLo = (column_[a][a] * lo[a] + column_[3][a]) - eye_[a];
-      const double qHi = (column_[a][a] * hi[a] + column_[3][a]) - eye_[a];
-      square[a] = std::max(qLo * qLo, qHi * qHi);
-      depthTerm[a] = std::min(qLo * forward_[a], qHi * forward_[a]);
-    }
-    const double maxSquare = (square[0] + square[1]) + square[2];
-    if (std::isfinite(maxSquare) && maxSquare >= std::numeric_limits<double>::min())
-    {
-      const double minDepth = (depthTerm[0] + depthTerm[1]) + depthTerm[2];
-      const double depth = std::max(minDepth, view_.nearDistance);
-      return visibleFactor(ppu_ * (std::sqrt(maxSquare) / depth) / depth);
-    }
-    // A square overflowed or underflowed: the corner loop takes each length robustly.
+    const __m128d q = _mm_sub_pd(
+      _mm_add_pd(_mm_mul_pd(_mm_load_pd(lanes_.scale[a]), _mm_set_pd(hi[a], lo[a])), _mm_load_pd(lanes_.offset[a])),
+      _mm_load_pd(lanes_.eye[a]));
+    const __m128d sq = _mm_mul_pd(q, q);
+    const __m128d d = _mm_mul_pd(q, _mm_load_pd(lanes_.forward[a]));
+    square[a] = _mm_cvtsd_f64(_mm_max_sd(_mm_unpackhi_pd(sq, sq), sq));
+    depthTerm[a] = _mm_cvtsd_f64(_mm_min_sd(_mm_unpackhi_pd(d, d), d));
   }
+#else
+  for (int a = 0; a < 3; ++a)
+  {
+    const double qLo = (column_[a][a] * lo[a] + column_[3][a]) - eye_[a];
+    const double qHi = (column_[a][a] * hi[a] + column_[3][a]) - eye_[a];
+    square[a] = std::max(qLo * qLo, qHi * qHi);
+    depthTerm[a] = std::min(qLo * forward_[a], qHi * forward_[a]);
+  }
+#endif
+  const double maxSquare = (square[0] + square[1]) + square[2];
+  if (!(std::isfinite(maxSquare) && maxSquare >= std::numeric_limits<double>::min()))
+  {
+    return false;
+  }
+  const double minDepth = (depthTerm[0] + depthTerm[1]) + depthTerm[2];
+  const double depth = std::max(minDepth, view_.nearDistance);
+  factor = visibleFactor(ppu_ * (std::sqrt(maxSquare) / depth) / depth);
+  return true;
+}
+
+double BoxProjector::cornerFactor(const Box& box) const
+{
+  // The corners computed side by side, axis by axis (q[axis][corner]: 2.7x faster than a
+  // loop of vectors, the same values); the largest distance is the root of the largest
+  // square (sqrt is monotone and correctly rounded: the same value).
+  const double lo[3] = { box.lo.x, box.lo.y, box.lo.z }, hi[3] = { box.hi.x, box.hi.y, box.hi.z };
   double q[3][8];
   for (int a = 0; a < 3; ++a)
   {

@@ -62,8 +62,15 @@ class BoxProjector
 public:
   BoxProjector(const View& view, const glm::dmat4& toWorld, ErrorMetric metric);
   double factor(const Box& box) const;
+  // The certified factor from the box's 8 corners, for any affine toWorld: factor's own
+  // path for a toWorld that is not diagonal. For a diagonal one, factor takes the extremes
+  // axis by axis instead, which gives the very same double (tests compare the two).
+  double cornerFactor(const Box& box) const;
 
 private:
+  // The certified factor for a diagonal toWorld, axis by axis; false when it cannot tell
+  // (a square out of range).
+  bool diagonalFactor(const Box& box, double& factor) const;
   View view_;
   glm::dmat4 toWorld_;
   ErrorMetric metric_;
@@ -78,6 +85,12 @@ private:
   // offset): each corner term then depends on one box coordinate, and factor takes the
   // extremes axis by axis.
   bool diagonal_ = false;
+  // diagonalFactor's per-axis operands, each twice (a lane for the box's lo, one for its
+  // hi), aligned for SSE2 loads.
+  struct alignas(16) DiagonalLanes
+  {
+    double scale[3][2], offset[3][2], eye[3][2], forward[3][2];
+  } lanes_ = {};
 };
 
 // The largest stored-height error that projects within tau pixels at `factor`: tau /
