@@ -78,10 +78,7 @@ double lnAtLeast(double r)
   std::memcpy(&z, &bits, sizeof z);
   return (e + (z - 1.0)) * 0.69314718055994529;
 }
-} // namespace
 
-namespace
-{
 // lambda_max at the budget itself (y = x): the coarsest link within the budget (kMax), and
 // how far toward the next one the certificate allows. count >= 1.
 double lambdaMaxAt(const double* error, int count, double budget, int& kMax)

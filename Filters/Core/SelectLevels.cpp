@@ -170,9 +170,11 @@ void fixStrips(const Quadtree& qt, const ErrorTable& t, const std::vector<double
     work.pop_back();
     queued[b] = 0;
     const int m = levels[b];
-    if (m < 0 || !qt.blockIsRingAt(b, m))
+    if (!qt.blockIsRingAt(b, m))
     {
-      continue; // one-quad and thin blocks have corner-only edges: nothing to join
+      // Not drawn (blockIsRingAt is false for m < 0), or a one-quad or thin block, whose
+      // edges are corner-only: nothing to join.
+      continue;
     }
     const std::array<int, 4> neighbour = qt.blockNeighbours(b);
     for (int side = 0; side < 4; ++side)

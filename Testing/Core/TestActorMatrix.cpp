@@ -149,8 +149,9 @@ TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
   {
     // Every other trial a diagonal frame (translation and per-axis scale, mirrored on some
     // axes), as a DEM's own frame usually is: BoxProjector takes its extremes axis by axis.
+    const bool diagonalFrame = trial % 2 == 0;
     glm::dmat4 model = randomAffine(rng);
-    if (trial % 2 == 0)
+    if (diagonalFrame)
     {
       model = glm::translate(glm::dmat4(1.0), glm::dvec3(randReal(rng, -5e3, 5e3), randReal(rng, -5e3, 5e3), randReal(rng, -500, 500)));
       model = glm::scale(model, glm::dvec3(randReal(rng, 0.3, 5.0) * (trial % 8 == 0 ? -1 : 1),
@@ -193,7 +194,7 @@ TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
       // The axis-by-axis extremes of a diagonal frame (SSE2 lanes where there are) give the
       // corner loop's double, bit for bit.
       EXPECT_EQ(projector.factor(box), projector.cornerFactor(box)) << "trial " << trial << " box " << k;
-      diagonalCompared += trial % 2 == 0 ? 1 : 0;
+      diagonalCompared += diagonalFrame ? 1 : 0;
       ++compared;
     }
   }
