@@ -168,17 +168,20 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     // points than its blocks at their levels, or it reaches outside the view), so the count
     // is not monotone in tau: a bisection alone can end far above a tau that fits.
     lo = hi = -1.0;
-    if (trial(std::numeric_limits<double>::max()) > triangleBudget)
+    const std::size_t coarsest = trial(std::numeric_limits<double>::max());
+    // Nodes drawn whole reach outside the view, so when the coarsest selection is over the
+    // budget a finer one can still fit: the sweep starts from its error all the same (when
+    // finite: nodata's is not), and only if nothing fits does the block-by-block search
+    // decide (and say when even one quad per block is over budget).
+    const double coarsestError = hierarchicalError();
+    if (coarsest > triangleBudget && !(coarsestError <= std::numeric_limits<double>::max()))
     {
-      // Nodes drawn whole reach outside the view, so a finer hierarchical selection can
-      // have fewer triangles than this one; the block-by-block search decides (and says
-      // when even one quad per block is over budget).
       outcome.trials = trials;
       return false;
     }
-    for (double x = hi; x > lowest;)
+    for (double x = hi > 0.0 ? hi : std::max(coarsestError, lowest); x > lowest;)
     {
-      x = std::max(0.5 * std::min(x, hi), lowest);
+      x = std::max(0.5 * (hi > 0.0 ? std::min(x, hi) : x), lowest);
       const std::size_t n = trial(x);
       if (n <= triangleBudget)
       {
@@ -193,6 +196,11 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
       {
         break; // far over: the count's dips are smaller than this
       }
+    }
+    if (hi < 0.0)
+    {
+      outcome.trials = trials;
+      return false; // nothing fitted
     }
   }
   // Then the crossing, interpolated: the count is close to a power of tau between two

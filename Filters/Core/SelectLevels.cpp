@@ -63,6 +63,21 @@ double visibleFactor(double f)
   return std::max(f, std::numeric_limits<double>::min());
 }
 
+// The tight factor's ratio is usable when no corner's across-the-vertical square
+// overflowed or underflowed (a zero one may be an underflow: a corner exactly on the
+// eye's vertical takes the loose bound instead) and the ratio is finite.
+bool tightRatioUsable(const double* across, int corners, double ratio)
+{
+  for (int k = 0; k < corners; ++k)
+  {
+    if (!(across[k] >= std::numeric_limits<double>::min() && across[k] <= std::numeric_limits<double>::max()))
+    {
+      return false;
+    }
+  }
+  return ratio <= std::numeric_limits<double>::max();
+}
+
 } // namespace
 
 int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
@@ -291,6 +306,13 @@ BoxProjector::BoxProjector(const View& view, const glm::dmat4& toWorld, ErrorMet
   for (int c = 0; c < 3; ++c)
     for (int a = 0; a < 3; ++a)
       diagonal_ = diagonal_ && (a == c || column_[c][a] == 0.0);
+  // The unit direction of a stored-height error in the world. Exactly (0, 0, +-1) in a
+  // diagonal frame, so that the corner loop's cross products there are the plain
+  // horizontal terms diagonalFactor takes.
+  for (int a = 0; a < 3; ++a)
+  {
+    up_[a] = diagonal_ ? (a == 2 ? (column_[2][2] < 0.0 ? -1.0 : 1.0) : 0.0) : column_[2][a] / vertical;
+  }
   for (int a = 0; a < 3; ++a)
   {
     for (int lane = 0; lane < 2; ++lane)
@@ -320,51 +342,77 @@ double BoxProjector::factor(const Box& box) const
 }
 
 // The world image of the box is the parallelepiped spanned by its transformed corners;
-// distance is convex and depth linear, so both extremes are at corners. Each corner is
-// toWorld * (x, y, z, 1) summed in glm's order, (c0 x + c1 y) + (c2 z + c3), from per-axis
-// terms: the very same doubles with 6 products instead of 8 matrix-vector products.
+// depth is linear, distance convex and |v x p| / Z quasi-convex (design.md, "Projecting the
+// error"), so every extreme is at a corner. Each corner is toWorld * (x, y, z, 1) summed in
+// glm's order, (c0 x + c1 y) + (c2 z + c3), from per-axis terms: the very same doubles with
+// 6 products instead of 8 matrix-vector products.
 //
 // With a diagonal toWorld, the corner term of axis a is (column_[a][a] * (lo or hi) +
 // column_[3][a]) - eye_[a], the same doubles as cornerFactor's (the other columns add exact
-// zeros). Rounded addition is monotone in each operand, so the largest (q0^2 + q1^2) + q2^2
-// over the corners is the sum of each axis's largest square, and the smallest depth the sum
-// of each axis's smallest term: the same values as the corner loop, from 6 terms instead of
-// 24. False when a square overflowed or underflowed: cornerFactor then takes each length
-// robustly. (An axis's lo and hi terms are computed side by side where SSE2 is: below.)
+// zeros), and up_ is (0, 0, +-1), so a corner's across-the-vertical square is q1^2 + q0^2
+// exactly. Rounded addition is monotone in each operand, so the smallest depth is the sum
+// of each axis's smallest term, each (x, y) column's smallest depth is at the height axis's
+// smallest term (where its ratio is largest), and the loose bound's largest
+// (q0^2 + q1^2) + q2^2 is the sum of each axis's largest square: the same values as the
+// corner loop. False when a square overflowed or underflowed: cornerFactor then takes each
+// length robustly. (An axis's lo and hi terms are computed side by side where SSE2 is.)
 bool BoxProjector::diagonalFactor(const Box& box, double& factor) const
 {
   const double lo[3] = { box.lo.x, box.lo.y, box.lo.z }, hi[3] = { box.hi.x, box.hi.y, box.hi.z };
-  double square[3], depthTerm[3];
+  // Per axis, the lo and hi corner terms' squares and depth terms ([axis][lo, hi]).
+  double square[3][2], depthTerm[3][2];
 #if defined(__SSE2__)
   // The lo and hi terms of an axis side by side in the two lanes of a register: the same
-  // IEEE operations on the same operands, so the same doubles. MAXSD (hi, lo) is
-  // hi > lo ? hi : lo as std::max(lo, hi) is lo < hi ? hi : lo, and MINSD (hi, lo) is
-  // hi < lo ? hi : lo as std::min(lo, hi) is: the same choice for every input, NaN included.
+  // IEEE operations on the same operands, so the same doubles.
   for (int a = 0; a < 3; ++a)
   {
     const __m128d q = _mm_sub_pd(
       _mm_add_pd(_mm_mul_pd(_mm_load_pd(lanes_.scale[a]), _mm_set_pd(hi[a], lo[a])), _mm_load_pd(lanes_.offset[a])),
       _mm_load_pd(lanes_.eye[a]));
-    const __m128d sq = _mm_mul_pd(q, q);
-    const __m128d d = _mm_mul_pd(q, _mm_load_pd(lanes_.forward[a]));
-    square[a] = _mm_cvtsd_f64(_mm_max_sd(_mm_unpackhi_pd(sq, sq), sq));
-    depthTerm[a] = _mm_cvtsd_f64(_mm_min_sd(_mm_unpackhi_pd(d, d), d));
+    _mm_storeu_pd(square[a], _mm_mul_pd(q, q));
+    _mm_storeu_pd(depthTerm[a], _mm_mul_pd(q, _mm_load_pd(lanes_.forward[a])));
   }
 #else
   for (int a = 0; a < 3; ++a)
   {
     const double qLo = (column_[a][a] * lo[a] + column_[3][a]) - eye_[a];
     const double qHi = (column_[a][a] * hi[a] + column_[3][a]) - eye_[a];
-    square[a] = std::max(qLo * qLo, qHi * qHi);
-    depthTerm[a] = std::min(qLo * forward_[a], qHi * forward_[a]);
+    square[a][0] = qLo * qLo;
+    square[a][1] = qHi * qHi;
+    depthTerm[a][0] = qLo * forward_[a];
+    depthTerm[a][1] = qHi * forward_[a];
   }
 #endif
-  const double maxSquare = (square[0] + square[1]) + square[2];
+  // std::min / std::max as the corner loop takes them (lo first).
+  const double nearestZ = std::min(depthTerm[2][0], depthTerm[2][1]);
+  const double minDepth = (std::min(depthTerm[0][0], depthTerm[0][1]) + std::min(depthTerm[1][0], depthTerm[1][1])) + nearestZ;
+  if (minDepth >= view_.nearDistance && minDepth > 0.0)
+  {
+    // The box beyond the near plane (the tight bound): the horizontal term of corner (i, j) is
+    // q1^2 + q0^2 at every height, and its depth is least at the lower depth term of the
+    // height axis (rounded addition is monotone), where its ratio is largest.
+    double across[2][2], ratio = 0.0;
+    for (int i = 0; i < 2; ++i)
+    {
+      for (int j = 0; j < 2; ++j)
+      {
+        across[i][j] = square[1][j] + square[0][i];
+        ratio = std::max(ratio, std::sqrt(across[i][j]) / ((depthTerm[0][i] + depthTerm[1][j]) + nearestZ));
+      }
+    }
+    if (tightRatioUsable(&across[0][0], 4, ratio))
+    {
+      factor = visibleFactor(ppu_ * ratio / minDepth);
+      return true;
+    }
+  }
+  // Loose: each axis's largest square and smallest depth term.
+  const double maxSquare = (std::max(square[0][0], square[0][1]) + std::max(square[1][0], square[1][1])) +
+    std::max(square[2][0], square[2][1]);
   if (!(std::isfinite(maxSquare) && maxSquare >= std::numeric_limits<double>::min()))
   {
     return false;
   }
-  const double minDepth = (depthTerm[0] + depthTerm[1]) + depthTerm[2];
   const double depth = std::max(minDepth, view_.nearDistance);
   factor = visibleFactor(ppu_ * (std::sqrt(maxSquare) / depth) / depth);
   return true;
@@ -396,6 +444,25 @@ double BoxProjector::cornerFactor(const Box& box) const
     const double depth = (q[0][k] * forward_[0] + q[1][k] * forward_[1]) + q[2][k] * forward_[2];
     maxSquare = std::max(maxSquare, square);
     minDepth = std::min(minDepth, depth);
+  }
+  if (minDepth >= view_.nearDistance && minDepth > 0.0)
+  {
+    // Tight: the box beyond the near plane. up_ x q is the part of a corner's offset across
+    // the vertical; its length over the corner's depth is largest at a corner.
+    double across[8], ratio = 0.0;
+    for (int k = 0; k < 8; ++k)
+    {
+      const double c0 = up_[1] * q[2][k] - up_[2] * q[1][k];
+      const double c1 = up_[2] * q[0][k] - up_[0] * q[2][k];
+      const double c2 = up_[0] * q[1][k] - up_[1] * q[0][k];
+      across[k] = (c0 * c0 + c1 * c1) + c2 * c2;
+      const double depth = (q[0][k] * forward_[0] + q[1][k] * forward_[1]) + q[2][k] * forward_[2];
+      ratio = std::max(ratio, std::sqrt(across[k]) / depth);
+    }
+    if (tightRatioUsable(across, 8, ratio))
+    {
+      return visibleFactor(ppu_ * ratio / minDepth);
+    }
   }
   double maxDist = std::sqrt(maxSquare);
   if (!(std::isfinite(maxSquare) && maxSquare >= std::numeric_limits<double>::min()))

@@ -18,11 +18,14 @@ namespace gmm
 
 enum class ErrorMetric
 {
-  // Certified: for a displacement of length delta inside a block's (world) box, the
-  // projected length is at most f * delta * maxDist / minDepth^2 pixels (f = pixels per
-  // unit at depth 1), where maxDist / minDepth are the largest eye distance and smallest
-  // view depth over the box. This also covers the off-axis magnification that
-  // delta * f / distance misses.
+  // Certified: a vertical displacement of length delta at p (relative to the eye, depth Z)
+  // projects to at most f * delta * |v x p| / Z^2 pixels (f = pixels per unit at depth 1,
+  // v the unit vertical). Over a box beyond the near plane that is at most
+  // f * delta * maxAcross / minDepth, maxAcross the largest |v x p| / Z over the box (at a
+  // corner: its level sets are convex cones) and minDepth its smallest depth ("tight");
+  // over a box that reaches the near plane, f * delta * maxDist / max(minDepth, near)^2 with
+  // maxDist the largest eye distance ("loose", never below the tight one). This also
+  // covers the off-axis magnification that delta * f / distance misses.
   Certified,
   // de Boer's approximation: f * delta / (distance from eye to box centre). Cheaper and not
   // a bound; offered for comparison.
@@ -69,7 +72,7 @@ public:
 
 private:
   // The certified factor for a diagonal toWorld, axis by axis; false when it cannot tell
-  // (a square out of range).
+  // (a square out of range). Tight: 4 corner columns (x, y) at the box's lower depth term.
   bool diagonalFactor(const Box& box, double& factor) const;
   View view_;
   glm::dmat4 toWorld_;
@@ -81,6 +84,7 @@ private:
   double column_[4][3] = {};
   double eye_[3] = {};
   double forward_[3] = {};
+  double up_[3] = {}; // the unit world direction of a stored-height error
   // toWorld's linear part is diagonal (a DEM's usual frame: spacing, height scale and an
   // offset): each corner term then depends on one box coordinate, and factor takes the
   // extremes axis by axis.

@@ -137,14 +137,15 @@ TEST(ActorMatrix, HeightScaleScalesTheBound)
 
 // The projection factor of a box (SelectLevels.h, BoxProjector) against its definition,
 // written out plainly: the 8 corners through the full matrix (glm's matrix-vector product),
-// the largest eye distance and the smallest depth along the unit view direction, and the
-// pixels per unit at depth 1 from the field of view. Random affine models, datums, height
+// the smallest depth along the unit view direction, and the pixels per unit at depth 1
+// from the field of view; beyond the near plane the largest ratio of a corner's offset
+// across the vertical to its depth, else the largest eye distance over the near depth. Random affine models, datums, height
 // scales, boxes (flat ones included) and cameras; the engine computes the corners term by
 // term, so the two agree to rounding, not bit for bit.
 TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
 {
   Rng rng(2718);
-  int compared = 0, diagonalCompared = 0;
+  int compared = 0, diagonalCompared = 0, tightCompared = 0;
   for (int trial = 0; trial < 400; ++trial)
   {
     // Every other trial a diagonal frame (translation and per-axis scale, mirrored on some
@@ -171,22 +172,26 @@ TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
     const glm::dvec3 fwd = glm::normalize(v.forward);
     const double ppu = 0.5 * v.viewportHeight / std::tan(v.fovYDegrees * 3.14159265358979323846 / 360.0);
     const double unitError = glm::length(glm::dvec3(toWorld * glm::dvec4(0, 0, 1, 0)));
+    const glm::dvec3 vertical = glm::dvec3(toWorld * glm::dvec4(0, 0, 1, 0)) / unitError;
     for (int k = 0; k < 20; ++k)
     {
       gmm::Box box;
       box.lo = glm::dvec3(randReal(rng, -3e4, 3e4), randReal(rng, -3e4, 3e4), randReal(rng, -500, 3000));
       box.hi = box.lo + glm::dvec3(std::exp(randReal(rng, 0, 9)), std::exp(randReal(rng, 0, 9)),
                           k % 4 == 0 ? 0.0 : std::exp(randReal(rng, -2, 7)));
-      double maxDist = 0.0, minDepth = INFINITY;
+      double maxDist = 0.0, minDepth = INFINITY, maxRatio = 0.0;
       for (int c = 0; c < 8; ++c)
       {
         const glm::dvec3 p(toWorld * glm::dvec4(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
                                        c & 4 ? box.hi.z : box.lo.z, 1.0));
         maxDist = std::max(maxDist, glm::length(p - v.eye));
         minDepth = std::min(minDepth, glm::dot(p - v.eye, fwd));
+        maxRatio = std::max(maxRatio, glm::length(glm::cross(vertical, p - v.eye)) / glm::dot(p - v.eye, fwd));
       }
       const double depth = std::max(minDepth, v.nearDistance);
-      const double expected = ppu * unitError * maxDist / (depth * depth);
+      const bool tight = minDepth >= v.nearDistance;
+      tightCompared += tight ? 1 : 0;
+      const double expected = tight ? ppu * unitError * maxRatio / minDepth : ppu * unitError * maxDist / (depth * depth);
       // Relative to the terms' magnitude: a datum of 6.4e6 leaves ~1e-9 m of rounding in
       // each corner, which a depth of a metre magnifies.
       const double slack = 1e-9 * (1.0 + std::abs(z0) * scale / depth);
@@ -200,6 +205,86 @@ TEST(ActorMatrix, ProjectionFactorIsItsCornerFormula)
   }
   EXPECT_EQ(compared, 8000);
   EXPECT_EQ(diagonalCompared, 4000);
+  EXPECT_GT(tightCompared, 2000); // both branches compared
+  EXPECT_LT(tightCompared, 7000);
+}
+
+// The factor is a bound: a vertical segment anywhere in the box, projected with the test's
+// own camera (CoreTestUtil.h, from View.h's definition), spans at most factor x its length
+// in pixels. Random frames (diagonal and affine), cameras (low and oblique, steep, looking
+// down) and boxes; segments between random heights at random (x, y), the box's corners
+// and the point straight below the eye included. Also reports how close the bound comes.
+TEST(ActorMatrix, ProjectionFactorBoundsTheProjectedSegments)
+{
+  Rng rng(1618);
+  int segments = 0;
+  double closest = 0.0;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    glm::dmat4 model = randomAffine(rng);
+    if (trial % 2 == 0)
+    {
+      model = glm::translate(glm::dmat4(1.0), glm::dvec3(randReal(rng, -500, 500), randReal(rng, -500, 500), randReal(rng, -50, 50)));
+      model = glm::scale(model, glm::dvec3(randReal(rng, 0.3, 5.0) * (trial % 8 == 0 ? -1 : 1),
+                                  randReal(rng, 0.3, 5.0), randReal(rng, 0.3, 5.0) * (trial % 6 == 2 ? -1 : 1)));
+    }
+    const double scale = randReal(rng, 0.5, 4.0);
+    gmm::View v;
+    v.model = model;
+    v.eye = glm::dvec3(randReal(rng, -300, 300), randReal(rng, -300, 300), randReal(rng, 5, 400));
+    const double down = trial % 3 == 0 ? randReal(rng, -8, -1) : randReal(rng, -0.6, -0.02);
+    v.forward = glm::dvec3(randReal(rng, -1, 1), randReal(rng, -1, 1), down);
+    v.up = std::abs(down) > 4 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    v.fovYDegrees = randReal(rng, 20, 90);
+    v.nearDistance = randReal(rng, 0.05, 5.0);
+    v.viewportHeight = 720;
+    const glm::dmat4 toWorld = gmm::heightfieldToWorld(v, 0.0, scale);
+    const gmm::BoxProjector projector(v, toWorld, gmm::ErrorMetric::Certified);
+    const MyCamera cam = makeCamera(v);
+    const glm::dmat4 toStored = glm::inverse(toWorld);
+    const glm::dvec3 below(toStored * glm::dvec4(v.eye, 1.0));
+    for (int k = 0; k < 20; ++k)
+    {
+      gmm::Box box;
+      const glm::dvec3 centre(toStored * glm::dvec4(v.eye + glm::normalize(v.forward) * std::exp(randReal(rng, 0, 7)), 1.0));
+      const glm::dvec3 half(std::exp(randReal(rng, -1, 5)), std::exp(randReal(rng, -1, 5)), std::exp(randReal(rng, -2, 4)));
+      box.lo = centre - half;
+      box.hi = centre + half;
+      const double factor = projector.factor(box);
+      for (int n = 0; n < 60; ++n)
+      {
+        double x = randReal(rng, box.lo.x, box.hi.x), y = randReal(rng, box.lo.y, box.hi.y);
+        if (n < 4)
+        {
+          x = n & 1 ? box.hi.x : box.lo.x;
+          y = n & 2 ? box.hi.y : box.lo.y;
+        }
+        else if (n == 4)
+        {
+          x = std::min(std::max(below.x, box.lo.x), box.hi.x);
+          y = std::min(std::max(below.y, box.lo.y), box.hi.y);
+        }
+        const double h0 = n < 4 ? box.lo.z : randReal(rng, box.lo.z, box.hi.z);
+        const double h1 = n < 4 ? box.hi.z : randReal(rng, box.lo.z, box.hi.z);
+        const glm::dvec3 a(toWorld * glm::dvec4(x, y, h0, 1.0)), b(toWorld * glm::dvec4(x, y, h1, 1.0));
+        double ax, ay, bx, by;
+        if (project(cam, a.x, a.y, a.z, ax, ay) < v.nearDistance || project(cam, b.x, b.y, b.z, bx, by) < v.nearDistance)
+        {
+          continue; // the bound is for points in front of the near plane
+        }
+        const double pixels = std::hypot(ax - bx, ay - by), bound = factor * std::abs(h1 - h0);
+        ++segments;
+        EXPECT_LE(pixels, bound * (1.0 + 1e-9) + 1e-12) << "trial " << trial << " box " << k << " segment " << n;
+        if (bound > 0.0)
+        {
+          closest = std::max(closest, pixels / bound);
+        }
+      }
+    }
+  }
+  std::printf("%d segments, largest measured / bound %.3f\n", segments, closest);
+  EXPECT_GT(segments, 100000);
+  EXPECT_GT(closest, 0.5); // the bound is not vacuous
 }
 
 TEST(ActorMatrix, RefusesBadInput)

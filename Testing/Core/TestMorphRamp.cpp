@@ -425,7 +425,10 @@ TEST(MorphRamp, FlightCertifiedAndSmooth)
               "triangles %zu (%zu)\n",
     path.worstPop, plain.worstPop, path.meanPop, plain.meanPop, path.worstError, plain.worstError,
     path.triangles, plain.triangles);
-  EXPECT_LE(path.worstPop, 0.55);
+  // Measured 0.486 px with the loose projection factor and 0.557 px with the tight one
+  // (SelectLevels.h): the tight factor leaves the surface nearer its budget (measured error
+  // 1.71 -> 1.89 px, 9 % fewer triangles), and a switch's leftover mismatch grows with it.
+  EXPECT_LE(path.worstPop, 0.6);
   EXPECT_LE(path.worstPop, 0.5 * plain.worstPop);
   EXPECT_LE(path.meanPop, 0.6 * plain.meanPop);
   EXPECT_GE(path.triangles, plain.triangles); // the path is never coarser than needed

@@ -104,11 +104,11 @@ TEST(StressLargeCoordinates, SameLevelsAtOriginUtmAndEcef)
 
 // A slow creep at the ECEF offset: the camera moves 100 frames along its view direction.
 // Levels must be those of the same creep at the origin (no precision noise) and must not
-// flicker: each block's level sequence is monotone (no back-and-forth). Moving along the
-// view direction lowers every depth by the step and every distance by at most the step, so
-// a block's own budget only shrinks; a block may still jump coarser in one step when a
-// finer neighbour releases the stitching constraint that held it down (fixStrips), which is
-// why "at most one level per frame" is not an invariant and is only reported.
+// flicker: no block changes back within kFlickerFrames of its last change. A block may jump
+// coarser when a finer neighbour releases the stitching constraint that held it down
+// (fixStrips) and later refine again as its own budget shrinks, so a monotone level
+// sequence is not an invariant (one such return, 14 frames apart, since the tight
+// projection factor), nor is "at most one level per frame": both are only reported.
 TEST(StressLargeCoordinates, SlowCreepAtEcefIsSmooth)
 {
   const gmm::Heightfield base = hillsDem(231, 214);
@@ -122,7 +122,9 @@ TEST(StressLargeCoordinates, SlowCreepAtEcefIsSmooth)
   const int blocks = e.quadtree().blockCount();
   std::vector<int8_t> previous;
   std::vector<int> direction(blocks, 0); // sign of each block's last change
-  int changes = 0, bigSteps = 0, reversals = 0;
+  std::vector<int> changedAt(blocks, -1000);
+  constexpr int kFlickerFrames = 4;
+  int changes = 0, bigSteps = 0, reversals = 0, flickers = 0;
   for (int f = 0; f < 100; ++f)
   {
     const gmm::View mv = moved(v, ecef);
@@ -140,15 +142,18 @@ TEST(StressLargeCoordinates, SlowCreepAtEcefIsSmooth)
         ++changes;
         bigSteps += std::abs(previous[b] - now[b]) > 1;
         reversals += direction[b] == -d;
+        flickers += direction[b] == -d && f - changedAt[b] <= kFlickerFrames;
         direction[b] = d;
+        changedAt[b] = f;
       }
     previous = now;
     v.eye += step;
   }
-  std::printf("[ creep ] %d level changes over %d blocks in 100 frames, %d by more than one level\n",
-    changes, blocks, bigSteps);
+  std::printf("[ creep ] %d level changes over %d blocks in 100 frames, %d by more than one level, "
+              "%d back to an earlier direction\n",
+    changes, blocks, bigSteps, reversals);
   EXPECT_GT(changes, 0) << "test setup: the creep should change some levels";
-  EXPECT_EQ(reversals, 0) << "a block went back and forth: flicker";
+  EXPECT_EQ(flickers, 0) << "a block went back and forth within " << kFlickerFrames << " frames: flicker";
 }
 
 // Random cameras whose ECEF eye is not exactly the origin eye + offset (coordinates that
