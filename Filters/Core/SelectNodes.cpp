@@ -330,13 +330,17 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
         markForRecheck(qt, out.blocks[k], ns);
       }
     }
-    // Splitting walks nodes and lists blocks; it leaves the requests alone.
+    // Splitting walks nodes and lists blocks; it leaves the requests alone. The block that
+    // asked (a neighbour of the covered block b) is looked at again: when the split node's
+    // children are drawn whole again, no new block marks it, and its strip beside them
+    // would stay over its budget.
     for (int b : scratch.splitRequests)
     {
       if (out.levels[b] == kCoveredLevel)
       {
         walk.splitCovering(b);
       }
+      markForRecheck(qt, b, ns);
     }
   }
   // Nodes split after being merged leave stale entries: keep the ones still merged.
