@@ -391,7 +391,27 @@ bool BoxProjector::diagonalFactor(const Box& box, double& factor) const
     // The box beyond the near plane (the tight bound): the horizontal term of corner (i, j) is
     // q1^2 + q0^2 at every height, and its depth is least at the lower depth term of the
     // height axis (rounded addition is monotone), where its ratio is largest.
-    double across[2][2], ratio = 0.0;
+    double ratio = 0.0;
+    bool usable = true;
+#if defined(__SSE2__)
+    // Both x columns (lanes) of one y row at a time: the scalar loop's operations, lane by
+    // lane (SQRTPD and DIVPD round as SQRTSD and DIVSD do). A NaN ratio takes the loose
+    // bound below either way (its across square is out of range).
+    const __m128d squareX = _mm_loadu_pd(square[0]), depthX = _mm_loadu_pd(depthTerm[0]);
+    const __m128d least = _mm_set1_pd(std::numeric_limits<double>::min());
+    const __m128d most = _mm_set1_pd(std::numeric_limits<double>::max());
+    __m128d largest = _mm_setzero_pd(), inRange = _mm_cmpeq_pd(largest, largest);
+    for (int j = 0; j < 2; ++j)
+    {
+      const __m128d across = _mm_add_pd(_mm_set1_pd(square[1][j]), squareX);
+      const __m128d depth = _mm_add_pd(_mm_add_pd(depthX, _mm_set1_pd(depthTerm[1][j])), _mm_set1_pd(nearestZ));
+      largest = _mm_max_pd(largest, _mm_div_pd(_mm_sqrt_pd(across), depth));
+      inRange = _mm_and_pd(inRange, _mm_and_pd(_mm_cmpge_pd(across, least), _mm_cmple_pd(across, most)));
+    }
+    ratio = std::max(_mm_cvtsd_f64(largest), _mm_cvtsd_f64(_mm_unpackhi_pd(largest, largest)));
+    usable = _mm_movemask_pd(inRange) == 3 && ratio <= std::numeric_limits<double>::max();
+#else
+    double across[2][2];
     for (int i = 0; i < 2; ++i)
     {
       for (int j = 0; j < 2; ++j)
@@ -400,7 +420,9 @@ bool BoxProjector::diagonalFactor(const Box& box, double& factor) const
         ratio = std::max(ratio, std::sqrt(across[i][j]) / ((depthTerm[0][i] + depthTerm[1][j]) + nearestZ));
       }
     }
-    if (tightRatioUsable(&across[0][0], 4, ratio))
+    usable = tightRatioUsable(&across[0][0], 4, ratio);
+#endif
+    if (usable)
     {
       factor = visibleFactor(ppu_ * ratio / minDepth);
       return true;
