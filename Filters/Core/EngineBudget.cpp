@@ -51,6 +51,14 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
 
 namespace
 {
+// A tau just below a selection's certified error x: the next finer selection. The step is
+// above the rounding of the selection's comparisons (an error against tau / factor) against
+// the reported error (error x factor), which a step of one ulp is not.
+double justBelow(double x)
+{
+  return x * (1.0 - 1e-12);
+}
+
 // What the merged nodes of a selection hold fixed in a budgeted frame: their fans'
 // triangles and their largest projected error (pixels).
 struct MergedPart
@@ -122,12 +130,15 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   const double lowest = std::max(tau, kLowestBudgetTau);
   double lo = -1.0, hi = -1.0; // the coarsest failing tau so far, the finest fitting one
   std::size_t loCount = 0, hiCount = 0; // their counts
+  double lastError = 0.0; // the last trial's certified error: its selection holds down to it
+  double loError = -1.0;  // lo's
   auto trial = [&](double x) {
     const std::size_t n = select(x);
+    lastError = hierarchicalError();
     if (n <= triangleBudget)
     {
       keep();
-      hi = std::min(x, std::max(hierarchicalError(), lowest));
+      hi = std::min(x, std::max(lastError, lowest));
       hiCount = n;
     }
     return n;
@@ -146,6 +157,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     {
       lo = x;
       loCount = first;
+      loError = lastError;
     }
     for (int k = 0; k < kWarmSteps && !closed(); ++k)
     {
@@ -156,10 +168,12 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
       {
         lo = x;
         loCount = n;
+        loError = lastError;
       }
     }
   }
-  if (!closed())
+  const bool cold = !closed();
+  if (cold)
   {
     // Cold start: the coarsest selection (every mergeable node drawn whole, tau clamped to
     // the largest budget), then tau halved from its error (above it nothing changes) down
@@ -181,7 +195,9 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     }
     for (double x = hi > 0.0 ? hi : std::max(coarsestError, lowest); x > lowest;)
     {
-      x = std::max(0.5 * (hi > 0.0 ? std::min(x, hi) : x), lowest);
+      // Halved, or just below the last selection's error where that is lower: the selection
+      // is the same from its error up, so a tau there would repeat it.
+      x = std::max(std::min(0.5 * (hi > 0.0 ? std::min(x, hi) : x), justBelow(lastError)), lowest);
       const std::size_t n = trial(x);
       if (n <= triangleBudget)
       {
@@ -191,6 +207,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
       {
         lo = x; // the first failure under the finest fit so far
         loCount = n;
+        loError = lastError;
       }
       if (n > 2 * triangleBudget)
       {
@@ -227,9 +244,30 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     {
       lo = x;
       loCount = n;
+      loError = lastError;
     }
     sameSide = k > 0 && fitted == lastFitted ? sameSide + 1 : 0;
     lastFitted = fitted;
+  }
+  // Below the bracket (cold starts): merging makes the count non-monotone in tau, so a
+  // failure does not bound the fits below it, and a dip a few per cent deep is narrower
+  // than the sweep's halving steps. Walk down from the bracket's failure (or from the finest
+  // fit, where its error is lower) through the next finer selections one at a time, each
+  // just below the last one's error, while their counts stay within kWalkCountSlack of the
+  // least count seen. A fit on the way is kept (trial) and the walk goes on below it.
+  std::size_t least = loCount;
+  for (int k = 0; cold && k < kWalkSteps && lo > 0.0 && std::min(hi, loError) > lowest; ++k)
+  {
+    const std::size_t n = trial(justBelow(std::min(hi, loError)));
+    if (n > triangleBudget)
+    {
+      loError = lastError;
+    }
+    if (static_cast<double>(n) > static_cast<double>(least) * (1.0 + kWalkCountSlack) + 2.0)
+    {
+      break; // climbing away from the budget
+    }
+    least = std::min(least, n);
   }
   levels_.swap(best.levels);
   factor_.swap(best.factor);

@@ -146,10 +146,12 @@ TEST(BudgetSelection, DrawnSurfaceWithinReportedError)
 //    was never worse at all on these frames until the tight projection factor moved the
 //    levels' thresholds: one frame in 371 is now 1.5 % worse, within that precision.)
 //  - With merged nodes (the default, in both): a node drawn whole can cost more triangles
-//    than its blocks or reach outside the view, so the count is not monotone in tau and the
-//    search can miss the tau-driven selection. Measured instead against what budgeted frames
-//    did before they used merged nodes (block by block, against the same default tau-driven
-//    frames): worse no more often; and better than the tau-driven frames on average.
+//    than its blocks or reach outside the view, so the count is not monotone in tau; a cold
+//    search walks down through the bumps below its bracket (kWalkSteps), so each frame is
+//    within the same 1 % of the tau-driven frame's error (it was up to 2.37x worse on 4
+//    frames without the walk). Also against what budgeted frames did before they used merged
+//    nodes (block by block, against the same default tau-driven frames): worse no more
+//    often; and better than the tau-driven frames on average.
 TEST(BudgetSelection, NeverWorseThanTauAtTheSameTriangleCount)
 {
   struct Tally
@@ -199,6 +201,8 @@ TEST(BudgetSelection, NeverWorseThanTauAtTheSameTriangleCount)
         {
           const gmm::FrameStats bm = budgetMerged.update(v, 0.0, tm.triangles);
           EXPECT_LE(bm.triangles, tm.triangles);
+          EXPECT_LE(bm.maxScreenError, tm.maxScreenError * (1 + gmm::kBudgetTauPrecision) * (1 + 1e-9))
+            << c.name << " merged nodes, tau " << tau << " at " << tm.triangles << " triangles";
           // The errors compared are bounds of the drawn surfaces: the independent measure
           // stays within each (so a lower reported error is a lower true bound).
           for (const gmm::Engine* e : { &tauMerged, &budgetMerged })
