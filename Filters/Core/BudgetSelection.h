@@ -64,17 +64,18 @@ constexpr int kBudgetBisections = 40;
 constexpr double kWarmStep = 1.0 + kBudgetTauPrecision;
 constexpr int kWarmSteps = 6;
 constexpr double kInterpolationMargin = 0.02;
-// A cold search then walks down through the selections below its lowest failure, one at a
-// time, at most kWalkSteps, while each count is within kWalkCountSlack (+ 2 triangles) of
-// the least so far (a dip below the budget lies beyond bumps of a few per cent).
-// TestBudgetSelection's merged-node frames, and the same test on three other terrain seeds
-// with 23 frames each (session 24): frames worse than the tau-driven one at its count
-// 4 / 5 / 9 / 9 / 14 without the walk, 0 / 0 / 0 / 2 / 0 with it (the 2 within the 1 %
-// precision; up to 2.37x worse before); slack 0 (stop at the first rise) left 3 and 3 on
-// two seeds, up to 2.24x, and 8 steps 3 on one, up to 1.09x. Cold selections 3 058 -> 3 689
-// (3 612 before the sweep stopped repeating a failed trial's selection).
+// A cold search then walks down through the selections below its bracket's failure, one at
+// a time, at most kWalkSteps, until kWalkPatience in a row bring no new low of the count (a
+// dip below the budget can lie beyond a bump). Measured (session 24) on
+// TestBudgetSelection's merged-node frames, and on the same test with three other terrain
+// seeds and 23 frames: frames worse than the tau-driven one at its count 4 / 9 / 9 / 14
+// without the walk (up to 2.57x), 0 / 0 / 2 / 3 with it (the 2 within the 1 % precision, the
+// 3 up to 1.19x). Patience 1: 0 / 3 / 4 / 9; 2: 0 / 0 / 3 / 5; 4: 0 / 0 / 2 / 2. Walking on
+// while counts stay within 2 % of the least instead: 0 / 0 / 2 / 0, but at 100 000
+// triangles, where a step adds a few dozen, it always took all 16 steps (cold frames of
+// BM_BudgetFlight/4097: 29.1 -> 45.0 selections; with patience 3, 32.1).
 constexpr int kWalkSteps = 16;
-constexpr double kWalkCountSlack = 0.02;
+constexpr int kWalkPatience = 3;
 
 // Why refinement stopped.
 enum class BudgetStop

@@ -253,9 +253,10 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   // failure does not bound the fits below it, and a dip a few per cent deep is narrower
   // than the sweep's halving steps. Walk down from the bracket's failure (or from the finest
   // fit, where its error is lower) through the next finer selections one at a time, each
-  // just below the last one's error, while their counts stay within kWalkCountSlack of the
-  // least count seen. A fit on the way is kept (trial) and the walk goes on below it.
+  // just below the last one's error, while the counts keep finding new lows: the walk stops
+  // after kWalkPatience selections without one. A fit on the way is kept (trial).
   std::size_t least = loCount;
+  int sinceLeast = 0;
   for (int k = 0; cold && k < kWalkSteps && lo > 0.0 && std::min(hi, loError) > lowest; ++k)
   {
     const std::size_t n = trial(justBelow(std::min(hi, loError)));
@@ -263,11 +264,15 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     {
       loError = lastError;
     }
-    if (static_cast<double>(n) > static_cast<double>(least) * (1.0 + kWalkCountSlack) + 2.0)
+    if (n < least)
     {
-      break; // climbing away from the budget
+      least = n;
+      sinceLeast = 0;
     }
-    least = std::min(least, n);
+    else if (++sinceLeast >= kWalkPatience)
+    {
+      break; // the count is climbing away from the budget
+    }
   }
   levels_.swap(best.levels);
   factor_.swap(best.factor);
