@@ -69,11 +69,12 @@ constexpr double kInterpolationMargin = 0.02;
 // dip below the budget can lie beyond a bump). Measured (session 24) on
 // TestBudgetSelection's merged-node frames, and on the same test with three other terrain
 // seeds and 23 frames: frames worse than the tau-driven one at its count 4 / 9 / 9 / 14
-// without the walk (up to 2.57x), 0 / 0 / 2 / 3 with it (the 2 within the 1 % precision, the
-// 3 up to 1.19x). Patience 1: 0 / 3 / 4 / 9; 2: 0 / 0 / 3 / 5; 4: 0 / 0 / 2 / 2. Walking on
-// while counts stay within 2 % of the least instead: 0 / 0 / 2 / 0, but at 100 000
-// triangles, where a step adds a few dozen, it always took all 16 steps (cold frames of
-// BM_BudgetFlight/4097: 29.1 -> 45.0 selections; with patience 3, 32.1).
+// without the walk (up to 13.1x before session 24, 2.57x with its sweep), 0 / 0 / 2 / 3
+// with it (the 2 within the 1 % precision, the 3 up to 1.19x). Patience 1: 0 / 3 / 4 / 9;
+// 2: 0 / 0 / 3 / 5; 4: 0 / 0 / 2 / 2. Walking on while counts stay within 2 % of the least
+// instead: 0 / 0 / 2 / 0, but at 100 000 triangles, where a step adds a few dozen, it always
+// took all 16 steps (cold frames of BM_BudgetFlight/4097: 29.1 -> 45.0 selections; with
+// patience 3, 32.1).
 constexpr int kWalkSteps = 16;
 constexpr int kWalkPatience = 3;
 
