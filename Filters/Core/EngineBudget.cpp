@@ -259,10 +259,15 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   int sinceLeast = 0;
   for (int k = 0; cold && k < kWalkSteps && lo > 0.0 && std::min(hi, loError) > lowest; ++k)
   {
-    const std::size_t n = trial(justBelow(std::min(hi, loError)));
+    const double x = std::max(justBelow(std::min(hi, loError)), lowest);
+    const std::size_t n = trial(x);
     if (n > triangleBudget)
     {
       loError = lastError;
+    }
+    if (x <= lowest)
+    {
+      break; // tau's own selection: nothing finer is asked for
     }
     if (n < least)
     {
