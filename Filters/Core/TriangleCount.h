@@ -11,6 +11,7 @@
 
 #include "ErrorTable.h"
 #include "Quadtree.h"
+#include "SelectLevels.h"
 #include "Tessellate.h"
 
 #include <cstddef>
@@ -35,5 +36,12 @@ std::size_t drawnTriangleCount(const Quadtree& qt, int block, const BlockConfig&
 // point, i.e. 2 x (block columns + block rows) below the node, plus the samples along its
 // sides at full resolution.
 std::size_t mergedNodeTriangleCount(const Quadtree& qt, int node);
+
+// Two triangles a quad for every block whose box meets `frustum` (boxVsFrustum, in the
+// quadtree's frame as cullBlocks takes it): the finest selection of the view with every
+// such block at level 0, or more than it draws (nodata's cells, nodes of error 0 drawn
+// whole). A walk that stops at nodes wholly inside or outside, so it visits the nodes the
+// frustum's planes cut, not the DEM's.
+std::size_t fullResolutionTrianglesInView(const Quadtree& qt, const Frustum& frustum);
 
 } // namespace gmm
