@@ -23,10 +23,10 @@ constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
 // A no-op for smaller ranges and on systems without transparent huge pages.
 void adviseHugePages(void* p, std::size_t bytes);
 
-// v.resize(n, value), with a new allocation of n or more elements advised before it is
-// filled.
+// v.reserve(n), with a new allocation (n elements or more) advised before its elements are
+// copied into it.
 template <class T>
-void resizeOnHugePages(std::vector<T>& v, std::size_t n, const T& value = T())
+void reserveOnHugePages(std::vector<T>& v, std::size_t n)
 {
   if (n > v.capacity() && n * sizeof(T) >= kHugePageBytes)
   {
@@ -36,6 +36,15 @@ void resizeOnHugePages(std::vector<T>& v, std::size_t n, const T& value = T())
     fresh.assign(v.begin(), v.end());
     v.swap(fresh);
   }
+  v.reserve(n);
+}
+
+// v.resize(n, value), with a new allocation of n or more elements advised before it is
+// filled.
+template <class T>
+void resizeOnHugePages(std::vector<T>& v, std::size_t n, const T& value = T())
+{
+  reserveOnHugePages(v, n);
   v.resize(n, value);
 }
 
