@@ -10,6 +10,7 @@ geomipmap_add_python_files(
   geomipmap_apps/__init__.py
   geomipmap_apps/command.py
   geomipmap_apps/errors.py
+  geomipmap_apps/hugeheap.py
   geomipmap_apps/scene.py
   geomipmap_apps/terrain.py
   geomipmap_apps/video.py

@@ -5,6 +5,10 @@
         [--size 960x540] [--measure-every 6] [--budget 150000] [--no-lod-actors] [--trace]
         [--slope-texture] [--no-retain-heap]
 
+Like the tools, it restarts itself first with glibc's heap on huge pages
+(geomipmap_apps/hugeheap.py; GEOMIPMAP_HUGE_HEAP=0 to measure without: session 24 measured
+both, Documentation/benchmarks.md). The JSON says which ("huge_heap").
+
 Per DEM, one orbit (geomipmap.flight.Orbit, terrain following at 300 m clearance, pitch 15,
 --frames frames) flown in five ways in the same process:
 
@@ -438,6 +442,8 @@ def front_to_back(image, flight, args, size, out):
 
 
 def main():
+    from geomipmap_apps.hugeheap import TUNABLE, restart_with_huge_heap
+    restart_with_huge_heap()  # before anything allocates (does not return when it restarts)
     args = parse()
     sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "Python"))
     import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
@@ -454,7 +460,8 @@ def main():
         image, heights = load(name, args.data)
         flight = Orbit(heights, clearance=300.0, frames=args.frames, pitch=15.0, view_angle=45.0)
         out = {"dem": name, "samples": image.GetNumberOfPoints(), "frames": args.frames,
-               "size": list(size), "fps": args.fps, "load_average": os.getloadavg()[0]}
+               "size": list(size), "fps": args.fps, "load_average": os.getloadavg()[0],
+               "huge_heap": TUNABLE in os.environ.get("GLIBC_TUNABLES", "")}
         modes = args.modes.split(",")
         if "rate" in modes:
             frame_rate_mode(image, flight, args, size, out)

@@ -2,6 +2,10 @@
 
 import sys
 
-from .cli import main
+from ..hugeheap import restart_with_huge_heap
+
+restart_with_huge_heap(["-m", "geomipmap_apps.bench"] + sys.argv[1:])  # as the launcher does
+
+from .cli import main  # noqa: E402
 
 sys.exit(main())
