@@ -9,7 +9,7 @@ tunable glibc.malloc.hugetlb=1 is set, which its dynamic loader reads only when 
 starts: hence a restart (os.execv) before anything else runs. Measured
 (Documentation/benchmarks.md, session 24): faults after warm-up 9 473 - 16 741 -> 9 - 21 a
 flight, frames within +-20 % of the frame-rate mode's budget 78 - 94 % -> 90 - 100 %
-(Puget Sound), 74 - 78 % -> 98 % (4097^2).
+(Puget Sound), 74 - 78 % -> 92 - 98 % (4097^2); llvmpipe frames 1.2 - 1.7x faster.
 
 Set GEOMIPMAP_HUGE_HEAP=0 to keep the heap as it is. Elsewhere than Linux with glibc, and
 when GLIBC_TUNABLES already names the tunable, nothing happens. A glibc older than 2.35
