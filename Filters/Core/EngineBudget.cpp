@@ -143,6 +143,11 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     }
     return n;
   };
+  auto failed = [&](double x, std::size_t n) { // the last trial, at x, drew n > budget
+    lo = x;
+    loCount = n;
+    loError = lastError;
+  };
   auto closed = [&]() { return hi > 0.0 && (hi <= lowest || lo > 0.0); };
   outcome = BudgetOutcome();
   // Warm start: at startTau (the previous frame's tau), then steps away from it that double in
@@ -155,9 +160,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     const bool fitted = first <= triangleBudget;
     if (!fitted)
     {
-      lo = x;
-      loCount = first;
-      loError = lastError;
+      failed(x, first);
     }
     // After a frame at full resolution the start is kLowestBudgetTau, which says nothing of
     // where this frame's boundary is once that no longer fits: no steps from it.
@@ -169,9 +172,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
       const std::size_t n = trial(x);
       if (n > triangleBudget)
       {
-        lo = x;
-        loCount = n;
-        loError = lastError;
+        failed(x, n);
       }
     }
   }
@@ -218,9 +219,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
       }
       else if (lo < 0.0)
       {
-        lo = x; // the first failure under the finest fit so far
-        loCount = n;
-        loError = lastError;
+        failed(x, n); // the first failure under the finest fit so far
       }
       if (n > 2 * triangleBudget)
       {
@@ -255,9 +254,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     const bool fitted = n <= triangleBudget;
     if (!fitted)
     {
-      lo = x;
-      loCount = n;
-      loError = lastError;
+      failed(x, n);
     }
     sameSide = k > 0 && fitted == lastFitted ? sameSide + 1 : 0;
     lastFitted = fitted;

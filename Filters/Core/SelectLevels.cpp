@@ -36,26 +36,6 @@ void markSubtree(const Quadtree& qt, int node, std::vector<uint8_t>& visible, st
   }
 }
 
-void cullNode(const Quadtree& qt, int node, const Frustum& fr, std::vector<uint8_t>& visible,
-  std::vector<int>& list)
-{
-  const QuadtreeNode& n = qt.nodes[node];
-  const Overlap o = boxVsFrustum(n.box, fr);
-  if (o == Overlap::Outside)
-  {
-    return;
-  }
-  if (o == Overlap::Inside || n.childCount == 0)
-  {
-    markSubtree(qt, node, visible, list); // fully inside: no more plane tests below
-    return;
-  }
-  for (int k = 0; k < n.childCount; ++k)
-  {
-    cullNode(qt, n.firstChild + k, fr, visible, list);
-  }
-}
-
 // selectLevels reads a zero factor as "culled", so a visible block keeps a positive one
 // even when the exact value underflows.
 double visibleFactor(double f)
@@ -279,7 +259,8 @@ int cullBlocks(const Quadtree& qt, const Frustum& frustum, std::vector<uint8_t>&
   list.clear();
   if (!qt.nodes.empty())
   {
-    cullNode(qt, 0, frustum, visible, list);
+    // Fully inside: no more plane tests below.
+    forNodesInFrustum(qt, 0, frustum, [&](int node) { markSubtree(qt, node, visible, list); });
   }
   return static_cast<int>(list.size());
 }

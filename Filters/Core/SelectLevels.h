@@ -42,6 +42,29 @@ enum class Overlap
 // Where a box lies against the frustum (conservative: Partial may be outside).
 Overlap boxVsFrustum(const Box& box, const Frustum& fr);
 
+// Calls accept(node) for every node whose box the frustum meets and that is wholly inside it
+// or a leaf, descending only through the nodes its planes cut (boxVsFrustum), from `node`
+// down: the walk of cullBlocks, so that its cost follows the frustum's boundary.
+template <class Accept>
+void forNodesInFrustum(const Quadtree& qt, int node, const Frustum& fr, Accept&& accept)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  const Overlap o = boxVsFrustum(n.box, fr);
+  if (o == Overlap::Outside)
+  {
+    return;
+  }
+  if (o == Overlap::Inside || n.childCount == 0)
+  {
+    accept(node);
+    return;
+  }
+  for (int k = 0; k < n.childCount; ++k)
+  {
+    forNodesInFrustum(qt, n.firstChild + k, fr, accept);
+  }
+}
+
 // Marks blocks whose box intersects the frustum (1) or not (0), and lists the visible ones
 // (quadtree order), walking the quadtree with early full-inside accept. The frustum is in
 // the quadtree's frame (x, y, stored height): transformPlanes(frustumOf(view),

@@ -126,31 +126,13 @@ std::size_t mergedNodeTriangleCount(const Quadtree& qt, int node)
 std::size_t fullResolutionTrianglesInView(const Quadtree& qt, const Frustum& frustum)
 {
   std::size_t total = 0;
-  std::vector<int> stack;
   if (!qt.nodes.empty())
   {
-    stack.push_back(0);
-  }
-  while (!stack.empty())
-  {
-    const QuadtreeNode& n = qt.nodes[stack.back()];
-    stack.pop_back();
-    const Overlap o = boxVsFrustum(n.box, frustum);
-    if (o == Overlap::Outside)
-    {
-      continue;
-    }
-    if (o == Overlap::Inside || n.childCount == 0)
-    {
-      const std::size_t quads = static_cast<std::size_t>(qt.colStart[n.colEnd] - qt.colStart[n.colBegin]) *
+    forNodesInFrustum(qt, 0, frustum, [&](int node) {
+      const QuadtreeNode& n = qt.nodes[node];
+      total += 2 * static_cast<std::size_t>(qt.colStart[n.colEnd] - qt.colStart[n.colBegin]) *
         static_cast<std::size_t>(qt.rowStart[n.rowEnd] - qt.rowStart[n.rowBegin]);
-      total += 2 * quads;
-      continue;
-    }
-    for (int k = 0; k < n.childCount; ++k)
-    {
-      stack.push_back(n.firstChild + k);
-    }
+    });
   }
   return total;
 }
