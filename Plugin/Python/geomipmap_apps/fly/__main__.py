@@ -4,7 +4,7 @@ import sys
 
 from ..hugeheap import restart_with_huge_heap
 
-restart_with_huge_heap(["-m", "geomipmap_apps.fly"] + sys.argv[1:])  # as the launcher does
+restart_with_huge_heap(["-m", __package__] + sys.argv[1:])  # as the launcher does
 
 from .cli import main  # noqa: E402
 
