@@ -77,14 +77,17 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     r.UploadSeconds += SecondsSince(start);
     ++r.Uploads;
   }
-  // Slopes for the fragment normals, only while lit (made from the engine's float heights).
+  // Slopes for the fragment normals, only while lit (made from the engine's float heights);
+  // vertex normals take them from the heights in the vertex shader.
   this->Lit = in.Lit;
-  this->Shading.SlopesFromHeights = in.Lit && !in.SlopeTexture;
-  if (this->Shading.SlopesFromHeights)
+  this->Shading.VertexNormals = in.Lit && in.VertexNormals;
+  this->Shading.SlopesFromHeights = in.Lit && !in.SlopeTexture && !in.VertexNormals;
+  const bool slopeTexture = in.Lit && in.SlopeTexture && !in.VertexNormals;
+  if (in.Lit && !slopeTexture)
   {
     this->Slopes.Release(win);
   }
-  if (r.HeightsError.empty() && in.Lit && !this->Shading.SlopesFromHeights &&
+  if (r.HeightsError.empty() && slopeTexture &&
     !this->Slopes.IsCurrent(in.Heights, vtkGeoMipMapSampleTexture::Slopes16F, this->Layout))
   {
     const auto start = std::chrono::steady_clock::now();

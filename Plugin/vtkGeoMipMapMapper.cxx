@@ -393,7 +393,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     // Heights on the GPU, and the slope texture (for lighting) where asked for. (Heights
     // read in place take none, but whether they can is known only in a render.)
     double need = samples * vtkGeoMipMapSampleTexture::BytesPerTexel(format);
-    if (this->SlopeTexture)
+    if (this->SlopeTexture && !this->VertexNormals)
     {
       need += samples * vtkGeoMipMapSampleTexture::BytesPerTexel(vtkGeoMipMapSampleTexture::Slopes16F);
     }
@@ -736,6 +736,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   gpu.MaximumTileSize = this->MaximumTileSize;
   gpu.ShareHeights = this->ShareHeights;
   gpu.SlopeTexture = this->SlopeTexture;
+  gpu.VertexNormals = this->VertexNormals;
   // Colouring: the array VTK's own mappers would colour by, on the GPU as well.
   int cellFlag = 0;
   gpu.Color = this->ScalarVisibility
@@ -1175,6 +1176,7 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "ShareHeights: " << this->ShareHeights << "\n";
   os << indent << "SlopeTexture: " << this->SlopeTexture << "\n";
+  os << indent << "VertexNormals: " << this->VertexNormals << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "Geomorphing: " << this->Geomorphing << "\n";
   os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";

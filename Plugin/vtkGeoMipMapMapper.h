@@ -230,6 +230,22 @@ public:
   vtkBooleanMacro(SlopeTexture, bool);
   ///@}
 
+  ///@{
+  /**
+   * Lit terrain shaded with normals at the drawn vertices instead of at every fragment:
+   * each vertex takes the full-resolution normal of its own sample (the rule above, four
+   * height fetches a vertex), and the triangle interpolates it, as vtkPolyDataMapper
+   * shades a mesh with point normals. Inside a coarse triangle the shading then loses the
+   * detail of the samples it skips (the geometry keeps its certified error), and a
+   * fragment fetches nothing for its normal, so a frame whose cost is its pixels is
+   * cheaper (on llvmpipe the default per-fragment normal is most of that cost). Overrides
+   * SlopeTexture (no slope texture is made). Off by default.
+   */
+  vtkSetMacro(VertexNormals, bool);
+  vtkGetMacro(VertexNormals, bool);
+  vtkBooleanMacro(VertexNormals, bool);
+  ///@}
+
   /** True when the last render read the heights in place (see ShareHeights). */
   bool GetHeightsShared() const;
 
@@ -544,6 +560,7 @@ protected:
   int MaximumTileSize = 0;
   bool ShareHeights = true;
   bool SlopeTexture = false;
+  bool VertexNormals = false;
   double LastUpdateTime = 0.0;
   int NumberOfHeightUploads = 0;
   int NumberOfIndexUploads = 0;

@@ -99,9 +99,10 @@ std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
 
 // The fragment's level-0 triangle (Tessellate.h's quad split along its (0,0)-(1,1)
 // diagonal): its vertices c, c + d, c + (1, 1) and their barycentric weights.
+const char* const kValid =
+  "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n";
 const char* const kQuad =
   "in vec2 gmmGridVSOutput;\n"
-  "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n"
   "struct GmmTri { ivec2 c; ivec2 d; vec3 w; };\n"
   "GmmTri gmmTriangle(vec2 g)\n"
   "{\n"
@@ -138,13 +139,11 @@ const char* const kSlopeFromTexture =
   "  s1 = gmmSlope(t.c + t.d);\n"
   "  s2 = gmmSlope(t.c + ivec2(1));\n"
   "}\n";
-// Slopes computed per fragment from the heights (SlopeTexture off: no slope texture), by
-// gmm::sampleSlope's rule (Heightfield.h): central differences, one-sided next to the
-// border or nodata, 0 where neither neighbour is valid. The three vertices' 15 neighbours are 10 distinct samples:
-// the quad's corners, two beyond each of c and c + (1, 1), and two beyond c + d (which two
-// depends on d). Fetched without branches (llvmpipe runs both sides of a branch), at
-// positions clamped into the grid; a clamped one is never used (hasA / hasB).
-const char* const kSlopeFromHeights =
+// gmm::sampleSlope's rule (Heightfield.h) on heights already fetched: central
+// differences, one-sided next to the border or nodata, 0 where neither neighbour is valid.
+// Neighbours are fetched at positions clamped into the grid; a clamped one is never used
+// (hasA / hasB).
+const char* const kSlopeRule =
   "float gmmSlope1(float ha, float hc, float hb, bool hasA, bool hasB, float spacing)\n"
   "{\n"
   "  bool okA = hasA && gmmValid(ha), okB = hasB && gmmValid(hb), okC = gmmValid(hc);\n"
@@ -159,7 +158,12 @@ const char* const kSlopeFromHeights =
   "  return vec2(gmmSlope1(hw, hc, he, p.x > 0, p.x + 1 < gmmGridSize.x, gmmSpacing.x),\n"
   "    gmmSlope1(hs, hc, hn, p.y > 0, p.y + 1 < gmmGridSize.y, gmmSpacing.y));\n"
   "}\n"
-  "float gmmHeightIn(ivec2 ij) { return gmmHeight(clamp(ij, ivec2(0), gmmGridSize - 1)); }\n"
+  "float gmmHeightIn(ivec2 ij) { return gmmHeight(clamp(ij, ivec2(0), gmmGridSize - 1)); }\n";
+// Slopes computed per fragment from the heights (SlopeTexture off: no slope texture), by
+// that rule. The three vertices' 15 neighbours are 10 distinct samples: the quad's corners,
+// two beyond each of c and c + (1, 1), and two beyond c + d (which two depends on d).
+// Fetched without branches (llvmpipe runs both sides of a branch).
+const char* const kSlopeFromHeights =
   "void gmmTriangleSlopes(GmmTri t, out vec2 s0, out vec2 s1, out vec2 s2)\n"
   "{\n"
   "  ivec2 c = t.c;\n"
@@ -174,6 +178,16 @@ const char* const kSlopeFromHeights =
   "  s0 = gmmSlope(c, h00, hw, h10, hs, h01);\n"
   "  s1 = lower ? gmmSlope(c + t.d, h10, h00, hx, hy, h11) : gmmSlope(c + t.d, h01, hx, h11, h00, hy);\n"
   "  s2 = gmmSlope(c + ivec2(1), h11, h01, he, h10, hn);\n"
+  "}\n";
+// VertexNormals: the full-resolution normal at the vertex's own sample, by the same rule
+// (four neighbours fetched a vertex), interpolated across the triangle by VTK's own
+// normalVCVSOutput, as vtkPolyDataMapper shades a mesh with point normals.
+const char* const kVertexNormal =
+  "vec3 gmmVertexNormal(ivec2 p, float hc)\n"
+  "{\n"
+  "  vec2 g = gmmSlope(p, hc, gmmHeightIn(p - ivec2(1, 0)), gmmHeightIn(p + ivec2(1, 0)),\n"
+  "    gmmHeightIn(p - ivec2(0, 1)), gmmHeightIn(p + ivec2(0, 1)));\n"
+  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
   "}\n";
 // One layer: the slopes bilinearly filtered at the fragment (one fetch; the exact
 // triangle interpolation above takes three, and differs from it by a fraction of a degree).
@@ -334,7 +348,7 @@ std::string Options::Key() const
     (this->TextureCoordinates ? "t" : "-") + (this->SingleLayer ? "1" : "n") +
     (this->LogScale ? "l" : "-") + (this->Drape ? "d" : "-") + (this->Morph ? "m" : "-") + "b" +
     std::to_string(this->HeightBands) + "x" + std::to_string(this->HeightsPerTexel) +
-    (this->SlopesFromHeights ? "s" : "-");
+    (this->SlopesFromHeights ? "s" : "-") + (this->VertexNormals ? "v" : "-");
 }
 
 void PrepareTemplates(std::map<vtkShader::Type, vtkShader*>& shaders)
@@ -366,6 +380,9 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
 
   // Vertex shader: the attributes VTK declared become values computed from gl_VertexID.
   vtkShaderProgram::Substitute(vs, "in vec4 vertexMC;", "vec4 vertexMC;");
+  // VTK declares normalMC only where it lights the surface.
+  const bool vertexNormals = o.VertexNormals &&
+    vtkShaderProgram::Substitute(vs, "in vec3 normalMC;", "vec3 normalMC;");
   vtkShaderProgram::Substitute(vs, "in vec3 normalMC;", "vec3 normalMC = vec3(0.0, 0.0, 1.0);");
   vtkShaderProgram::Substitute(vs, "in vec2 tcoord;", "vec2 tcoord;");
   vtkShaderProgram::Substitute(vs, "//GMM::Dec",
@@ -375,6 +392,7 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
       "uniform float gmmHeightRef;   // stored height at the model-coordinate origin\n"
       "out vec2 gmmGridVSOutput;\n" +
       (o.Color == Options::MapHeights ? "out float gmmHeightVSOutput;\n" : "") +
+      (vertexNormals ? std::string(kValid) + kSlopeRule + kVertexNormal : std::string()) +
       (o.Morph ? kMorph : ""));
   // Sample (i, j) of vertex id j * nx + i without an integer division (scalarised, hence
   // slow, on software rasterisers): a float estimate of j (relative error 2^-24), refined
@@ -390,6 +408,7 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
                       "  else if (gmmI >= gmmGridSize.x) { gmmJ += 1; gmmI -= gmmGridSize.x; }\n"
                       "  ivec2 gmmIJ = ivec2(gmmI, gmmJ);\n"
                       "  float gmmH = gmmHeight(gmmIJ);\n" +
+    std::string(vertexNormals ? "  normalMC = gmmVertexNormal(gmmIJ, gmmH);\n" : "") +
     std::string(o.Morph ? "  gmmH = gmmMorphHeight(gmmIJ, gmmH);\n" : "") +
     "  vertexMC = vec4(vec2(gmmIJ - gmmAnchor) * gmmSpacing,\n"
                       "    (gmmH - gmmHeightRef) * gmmHeightScale, 1.0);\n"
@@ -421,12 +440,14 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
 
   // Fragment shader: full-resolution normal and colour at the fragment's grid position,
   // from one fetch of its quad's corners.
-  const bool lit = fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos;
+  // With vertex normals VTK's interpolated normal is kept: the fragment computes none.
+  const bool lit = !vertexNormals &&
+    fs.find("vec3 normalVCVSOutput = normalize(normalVCVSOutput);") != std::string::npos;
   const bool colored = o.Color != Options::PropertyColor;
   vtkShaderProgram::Substitute(fs, "//GMM::Dec",
-    FetchFunctions(o) + kQuad +
+    FetchFunctions(o) + kValid + kQuad +
       (!lit ? std::string()
-            : o.SlopesFromHeights ? std::string(kSlopeFromHeights) + kNormalOnTriangle
+            : o.SlopesFromHeights ? std::string(kSlopeRule) + kSlopeFromHeights + kNormalOnTriangle
             : o.SingleLayer       ? std::string(kNormalBilinear)
                                   : std::string(kSlopeFromTexture) + kNormalOnTriangle) +
       ColorFunctions(o) + (o.Drape ? kDrape : ""));

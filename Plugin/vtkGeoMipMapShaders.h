@@ -54,6 +54,7 @@ struct Options
                        // (vtkGeoMipMapSharedHeights.h) instead of the height texture
   int HeightsPerTexel = 1; // samples in one texel of those buffer textures (a power of two)
   bool SlopesFromHeights = false; // lit: slopes computed per fragment, no slope texture
+  bool VertexNormals = false; // lit: normals at the vertices, interpolated (no fragment normal)
 
   /** A short string that differs when the shader source must differ. */
   std::string Key() const;

@@ -7,13 +7,14 @@ values, PNG frames that are not blank and show terrain under a sky, the summary 
 stdout, the measured screen error of every frame within tau (513 x 513 at tau 2: measured
 1.2 .. 1.6 px; with the engine's projection halved, 2.2 .. 2.7 px, so the check bites);
 then a line flight as a command (the launcher) with terrain following (--clearance) and
---every / --seconds.
+--every / --seconds, and the same with --vertex-normals (similar pictures, not the same).
 """
 
 import glob
 import os
 
-from flytestutil import check, check_measured, measured_flight, png_stats, read_csv, run, setup
+from flytestutil import (check, check_measured, measured_flight, png_pixels, png_stats, read_csv,
+                         run, setup)
 
 exe, out = setup()
 d1 = os.path.join(out, "orbit")
@@ -49,4 +50,18 @@ rc, so, se = run(exe, "--path", "line", "--clearance", "150", "--seconds", "1", 
 check(rc == 0, f"line flight exited {rc}: {se.strip()}")
 check(len(read_csv(os.path.join(d2, "flight.csv"))) == 8, "--seconds 1 --fps 8: 8 rows")
 check(len(glob.glob(os.path.join(d2, "frame_*.png"))) == 2, "--every 4 of 8: 2 PNGs")
+
+# --vertex-normals reaches the mapper: the same flight's pictures shaded per vertex look
+# like the per-fragment ones (same terrain, same colours) but are not the same pixels.
+d3 = os.path.join(out, "line-vertex-normals")
+rc, so, se = run(exe, "--path", "line", "--clearance", "150", "--seconds", "1", "--fps", "8",
+                 "--every", "4", "--size", "200x120", "--synthetic-size", "129", "--tau", "2",
+                 "--vertex-normals", "--out", d3)
+check(rc == 0, f"--vertex-normals flight exited {rc}: {se.strip()}")
+for name in sorted(os.path.basename(p) for p in glob.glob(os.path.join(d2, "frame_*.png"))):
+    a, b = png_pixels(os.path.join(d2, name))[2], png_pixels(os.path.join(d3, name))[2]
+    diff = abs(a - b).max(axis=1)
+    check(a.shape == b.shape and 0 < (diff > 0).mean() and (diff > 24).mean() < 0.05,
+          f"{name}: --vertex-normals changed {100 * (diff > 0).mean():.1f} % of the pixels, "
+          f"{100 * (diff > 24).mean():.2f} % by more than 24 levels")
 print("TestFlySynthetic: passed")

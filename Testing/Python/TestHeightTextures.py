@@ -24,6 +24,10 @@ vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
 - lit with the slopes computed per fragment from the heights (SlopeTexture off, the
   default): the slope texture's picture within its rounding, with a nodata hole too, 4
   bytes a sample less.
+- lit with normals per vertex (VertexNormals): at tau = 0 (every triangle a level-0 half
+  quad) the stock mapper's picture of the full-resolution mesh carrying the same
+  central-difference point normals (computed in numpy), with a nodata hole too, heights
+  read in place or from the texture; no slope texture even where SlopeTexture asks for one.
 The texture-path cases run with ShareHeights off, as on a GPU with its own memory.
 """
 
@@ -36,6 +40,7 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkPolyDataMapper, 
 
 import geomipmap
 import refscene
+from geomipmap_apps.bench.meshes import _grid_normals
 
 W, H = 480, 320
 BG = (0.1, 0.1, 0.2)
@@ -220,6 +225,36 @@ for name, z in (("no nodata", np.round(zf).astype(np.float32)), ("a nodata hole"
         check(drawn.mean() > 0.1 and d < (0.01 if tile == 0 else 0.001) and saved == 4 * layer_texels(tile),
               f"slopes per fragment, {name}, {layers}, heights {where}: {100 * d:.3f} % of the "
               f"terrain's pixels differ by > 8 from the slope texture's; {saved} bytes less")
+
+# Normals per vertex (VertexNormals): each drawn vertex takes its sample's full-resolution
+# normal and the triangle interpolates it. At tau 0 every drawn triangle is a level-0 half
+# quad, so the picture is the stock mapper's of the full-resolution mesh whose point normals
+# follow the same rule, computed here with numpy (geomipmap-bench's reference normals), but
+# for the strips' corner quads split along the other diagonal. SlopeTexture is overridden.
+# With HeightScale 3 the reference is the mesh of the heights times 3.
+for name, z, scale in (("no nodata", np.round(zf).astype(np.float32), 1.0), ("a nodata hole", hole, 1.0),
+                       ("HeightScale 3", np.round(zf).astype(np.float32), 3.0)):
+    img = refscene.image_from_heights(z)
+    scaled = refscene.image_from_heights(z * np.float32(scale))
+    mesh = refscene.reference_mesh(scaled, normals=False)
+    normals = numpy_to_vtk(_grid_normals(refscene.heights(scaled), *refscene.sample_xy(scaled)).reshape(-1, 3),
+                           deep=True)
+    normals.SetName("Normals")
+    mesh.GetPointData().SetNormals(normals)
+    stock_vertex = frame(refscene.stock_actor(mesh))
+    drawn = refscene.covered(stock_vertex, BG)
+    for share in (False, True):
+        mv, av = ours(img, ShareHeights=share, VertexNormals=True, SlopeTexture=True, PixelError=0.0,
+                      HeightScale=scale)
+        vertex = frame(av)
+        vertex_bytes, where = mv.GetGPUMemoryBytes(), "read in place" if mv.GetHeightsShared() else "from the texture"
+        mp, ap = ours(img, ShareHeights=share, PixelError=0.0)  # per fragment, no slope texture
+        frame(ap)
+        d = differing(stock_vertex, vertex, 2) / drawn.mean()
+        check(drawn.mean() > 0.1 and d < 0.005 and vertex_bytes == mp.GetGPUMemoryBytes(),
+              f"normals per vertex, {name}, heights {where}, tau 0: {100 * d:.3f} % of the terrain's "
+              f"pixels differ by > 2 from the stock mapper's with the same point normals; "
+              f"{vertex_bytes} GPU bytes (per fragment: {mp.GetGPUMemoryBytes()})")
 
 # Colouring by a second point array through a lookup table, and by RGB colours.
 slope = np.hypot(*np.gradient(zf, 30.0)).astype(np.float32)

@@ -46,22 +46,28 @@ def read_csv(filename):
         return list(csv.DictReader(f))
 
 
-def png_stats(filename):
-    """(width, height, variance of the grey values, fraction of terrain-coloured pixels).
-
-    Terrain colours (green, brown, grey, snow) have blue <= max(red, green) + 8; the sky
-    background is clearly blue. Read with VTK's PNG reader and numpy.
-    """
-    import numpy as np
+def png_pixels(filename):
+    """(width, height, pixels): the PNG's pixels as a float numpy array, one row per pixel,
+    read with VTK's PNG reader."""
     from vtkmodules.vtkIOImage import vtkPNGReader
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
     r = vtkPNGReader()
     r.SetFileName(filename)
     r.Update()
-    img = r.GetOutput()
-    w, h, _ = img.GetDimensions()
-    a = vtk_to_numpy(img.GetPointData().GetScalars()).astype(float)
+    w, h, _ = r.GetOutput().GetDimensions()
+    return w, h, vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(float)
+
+
+def png_stats(filename):
+    """(width, height, variance of the grey values, fraction of terrain-coloured pixels).
+
+    Terrain colours (green, brown, grey, snow) have blue <= max(red, green) + 8; the sky
+    background is clearly blue.
+    """
+    import numpy as np
+
+    w, h, a = png_pixels(filename)
     if a.ndim == 1 or a.shape[1] < 3:
         return w, h, float(a.var()), 0.0
     rgb = a[:, :3]

@@ -113,7 +113,8 @@ def add_terrain_options(parser, dem_positional=False):
 
 def add_rendering_options(parser, size=(1280, 720)):
     """The rendering options: --tau, --block-size, --size, --color, --texture,
-    --texture-size, --no-lighting (read by scene.Scene.from_args); returns the group so that
+    --texture-size, --no-lighting, --vertex-normals (read by scene.Scene.from_args); returns
+    the group so that
     a tool can add its own."""
     g = parser.add_argument_group("rendering")
     g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
@@ -131,6 +132,10 @@ def add_rendering_options(parser, size=(1280, 720)):
                    metavar="PIXELS", help="resample a --texture larger than this a side "
                    "(default 8192; at most 16384, the OpenGL texture limit)")
     g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
+    g.add_argument("--vertex-normals", action="store_true",
+                   help="shade with normals at the drawn vertices instead of at every pixel "
+                   "(less shading detail in coarse triangles; faster frames on a software "
+                   "renderer such as llvmpipe)")
     return g
 
 

@@ -42,7 +42,9 @@ class Scene:
     block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
     "texture:FILE.png" (stretched over the extent). drape: a georeferenced image
     (orthophoto) laid over that colouring by its coordinates (vtkGeoMipMapImageDrape),
-    resampled to at most drape_size pixels a side. size: the window's (width, height).
+    resampled to at most drape_size pixels a side. vertex_normals: the mapper's
+    VertexNormals (normals per vertex instead of per fragment). size: the window's (width,
+    height).
     on_screen: a window on the display instead of off-screen rendering. title: the
     window's name. messages: VTKMessages for errors (texture reading). window: a render
     window to add the terrain renderer to (one that showed loading progress), else a new
@@ -52,7 +54,7 @@ class Scene:
 
     def __init__(self, image, heights, block_size=None, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
-                 messages=None, window=None, drape=None, drape_size=8192):
+                 messages=None, window=None, drape=None, drape_size=8192, vertex_normals=False):
         import geomipmap
 
         self.messages = messages or VTKMessages()
@@ -61,6 +63,7 @@ class Scene:
         if block_size is not None:  # None: the mapper's default (GetDefaultBlockSize)
             self.mapper.SetBlockSize(block_size)
         self.mapper.SetPixelError(tau)
+        self.mapper.SetVertexNormals(vertex_normals)
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)
         self._colour(heights, color)
@@ -96,7 +99,8 @@ class Scene:
         """A Scene with the rendering options of command.add_rendering_options."""
         return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
                    lighting=not args.no_lighting, size=args.size, drape=args.texture,
-                   drape_size=args.texture_size, **kw)
+                   drape_size=args.texture_size,
+                   vertex_normals=args.vertex_normals, **kw)
 
     def _colour(self, heights, spec):
         if spec == "elevation":

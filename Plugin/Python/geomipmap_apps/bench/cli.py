@@ -3,6 +3,8 @@
 Methods (same window, camera path, colouring and lighting, one at a time):
   brute    the full-resolution mesh in a stock vtkPolyDataMapper (uploaded once)
   ours     vtkGeoMipMapMapper at each tau
+  ours-vn  the same mapper and triangles with VertexNormals on (normals per vertex, as the
+           stock mapper shades the other methods' meshes, instead of per fragment)
   greedy   vtkGreedyTerrainDecimation at ours' mean triangle count per tau (built once)
   uniform  every s-th sample, s chosen for the same triangle count
   quadric  vtkQuadricClustering (what vtkQuadricLODActor uses) at the same count
@@ -22,7 +24,7 @@ from . import report
 from .run import run_dem
 
 PROG = "geomipmap-bench"
-METHODS = ("brute", "ours", "greedy", "uniform", "quadric")
+METHODS = ("brute", "ours", "ours-vn", "greedy", "uniform", "quadric")
 
 
 def _list(kind, allow_empty=False):

@@ -125,12 +125,15 @@ def summarise(rows):
     return out
 
 
-def pareto(groups, dem):
-    """(dominant, list of other-method points not beaten by an ours point with <= error)."""
-    ours = [g for g in groups if g["dem"] == dem and g["method"] == "ours"]
+OURS = ("ours", "ours-vn")  # the mapper, shaded per fragment (default) or per vertex
+
+
+def pareto(groups, dem, method="ours"):
+    """(dominant, list of other-method points not beaten by a `method` point with <= error)."""
+    ours = [g for g in groups if g["dem"] == dem and g["method"] == method]
     losses = []
     for g in groups:
-        if g["dem"] != dem or g["method"] in ("ours", "brute"):
+        if g["dem"] != dem or g["method"] in OURS + ("brute",):
             continue
         beaten = any(o["err_max"] <= g["err_max"] and o["total_ms"][1] < g["total_ms"][1]
                      for o in ours)
@@ -174,16 +177,18 @@ def markdown(groups, metas):
                 f"{g['err_max']:.3f} | {g['err_p99']:.3f} | {g['err_mean']:.4f} | "
                 f"{g['uncovered']:.0f} | {_f(100 * g['depth'], 2)} | "
                 f"{_f(100 * g['shade'], 2)} / {_f(100 * g['shade_max'], 2)} |")
-        dom, losses = pareto(groups, dem)
-        lines += ["", f"Pareto (for every greedy / uniform / quadric point, an ours point with <= "
-                  f"measured max error and lower median frame time; brute force, 0 px, is "
-                  f"the reference): {'yes' if dom else 'no'}"]
-        if losses:
-            lines.append(f"Ours beats every other point whose measured max error is below "
-                         f"{min(g['err_max'] for g in losses):.2f} px; not beaten:")
-        for g in losses:
-            lines.append(f"- not beaten: {g['method']} tau {g['tau']} ({g['err_max']:.3f} px, "
-                         f"{g['total_ms'][1]:.1f} ms median)")
+        for method in (x for x in OURS if any(g["dem"] == dem and g["method"] == x
+                                                for g in groups)):
+            dom, losses = pareto(groups, dem, method)
+            lines += ["", f"Pareto of {method} (for every greedy / uniform / quadric point, an "
+                      f"{method} point with <= measured max error and lower median frame time; "
+                      f"brute force, 0 px, is the reference): {'yes' if dom else 'no'}"]
+            if losses:
+                lines.append(f"{method} beats every other point whose measured max error is "
+                             f"below {min(g['err_max'] for g in losses):.2f} px; not beaten:")
+            for g in losses:
+                lines.append(f"- not beaten: {g['method']} tau {g['tau']} "
+                             f"({g['err_max']:.3f} px, {g['total_ms'][1]:.1f} ms median)")
         lines.append("")
         for d, text in notes:
             if d == dem:
@@ -207,8 +212,8 @@ def plot(groups, filename):
     rows = (len(dems) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.2 * rows), squeeze=False)
     # Fixed colours: the same method looks the same in every panel.
-    style = {"ours": ("o-", "C0"), "greedy": ("s--", "C1"), "uniform": ("^--", "C2"),
-             "quadric": ("v--", "C3")}
+    style = {"ours": ("o-", "C0"), "ours-vn": ("D-", "C4"), "greedy": ("s--", "C1"),
+             "uniform": ("^--", "C2"), "quadric": ("v--", "C3")}
     floor = 0.05  # log axes: a measured 0 px is drawn at this floor
     for ax, dem in zip(axes.ravel(), dems):
         gs = [g for g in groups if g["dem"] == dem]
@@ -219,7 +224,7 @@ def plot(groups, filename):
             if pts:
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], mk, color=colour,
                         label=method)
-                if method == "ours":
+                if method in OURS:
                     for e, t, tau in pts:
                         ax.annotate(f"τ={tau:g}", (e, t), fontsize=7, xytext=(3, 3),
                                     textcoords="offset points")

@@ -121,10 +121,19 @@ def _build(label, args, methods, over, budget_gb, bench, heights, image, skip, o
         row["render_ms"] = row["total_ms"] - row["lod_ms"] - row["upload_ms"]
         row["certified_px"] = m.GetMaximumScreenSpaceError()
 
-    for tau in args.tau:
-        configs.append(Config("ours", tau, bench.scene.actor,
-                              lambda f, tau=tau: bench.ours_mesh(tau),
-                              before=lambda tau=tau: m.SetPixelError(tau), extra=ours_extra))
+    def ours_before(tau, vertex_normals):
+        def before():
+            m.SetPixelError(tau)
+            m.SetVertexNormals(vertex_normals)
+        return before
+
+    # ours-vn: the same mapper, selection and triangles, shaded per vertex.
+    for method in (x for x in ("ours", "ours-vn") if x in methods):
+        for tau in args.tau:
+            configs.append(Config(method, tau, bench.scene.actor,
+                                  lambda f, tau=tau: bench.ours_mesh(tau),
+                                  before=ours_before(tau, method == "ours-vn"),
+                                  extra=ours_extra))
     targets = _targets(args, bench)
     nodata = not np.isfinite(heights.z).all()
     for mth in ("greedy", "uniform", "quadric"):
