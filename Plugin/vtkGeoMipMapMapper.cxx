@@ -681,9 +681,14 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     const gmm::Quadtree& qt = in.Engine.quadtree();
     if (!this->LastFrameFrozen || in.Morph.blockT.size() != static_cast<size_t>(qt.blockCount()))
     {
+      // Part of the frame's LOD work: its time goes into LastUpdateTime (a frame whose
+      // blocks all change configuration recomputes their part errors, which can cost more
+      // than the selection).
+      const auto start = Clock::now();
       gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(),
         gmm::morphErrorBudget(in.Engine.stats(), this->PixelError), in.MorphCache, in.Morph,
         in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs());
+      this->LastUpdateTime += this->LastFrameFrozen ? 0.0 : SecondsSince(start);
     }
     const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
     in.Morphing = merr.empty();

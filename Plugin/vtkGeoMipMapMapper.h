@@ -417,7 +417,8 @@ public:
   ///@{
   /**
    * Statistics of the last rendered frame (the last renderer that drew this mapper).
-   * LastUpdateTime is the LOD work (cull, select, tessellate) in seconds;
+   * LastUpdateTime is the LOD work (cull, select, tessellate, and with Geomorphing the
+   * morph factors) in seconds;
    * MaximumScreenSpaceError is the engine's certified bound in pixels and
    * MaximumGeometricError in data units; IndicesReused is true when the frame's triangles
    * equal the previous frame's. After a render that drew nothing because of an error (bad

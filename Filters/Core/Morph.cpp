@@ -263,6 +263,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     cache.slots.clear();
     cache.freeSlots.clear();
     cache.held.clear();
+    cache.inner.reset(blocks);
     cache.heights = hf.heights();
   }
   // The drawn blocks: the caller's list, or found in the levels.
@@ -392,8 +393,16 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
         state.previousErrors = state.errors;
         const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target,
           edges[3]->target };
-        updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, changedMorphParts(state.key, key),
-          state.errors, cache.scratch);
+        unsigned parts = changedMorphParts(state.key, key);
+        if ((parts & 1u) && cache.inner.take(b, cfg.level, out.blockTarget[b], state.errors))
+        {
+          parts &= ~1u;
+        }
+        updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, parts, state.errors, cache.scratch);
+        if (parts & 1u)
+        {
+          cache.inner.keep(qt, b, cfg.level, out.blockTarget[b], state.errors);
+        }
         state.key = key;
       }
     }

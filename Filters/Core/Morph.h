@@ -106,6 +106,7 @@ struct MorphCache
   uint32_t frame = 0;                   // frames computed with this cache
   const void* heights = nullptr;        // the heights the errors are of (reset on change)
   MorphPartScratch scratch;
+  InnerErrorMemo inner;                 // inner-grid errors by block and level
   // Per drawn block of a frame (scratch): its slot, its configuration as Tessellate draws
   // it and its four edges, found once and read by every pass.
   std::vector<int32_t> drawnSlots;

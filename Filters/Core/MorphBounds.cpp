@@ -305,4 +305,49 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   }
 }
 
+bool InnerErrorMemo::take(int block, int level, int target, PartErrors& errors) const
+{
+  if (block < 0 || block >= static_cast<int>(this->first.size()) || this->first[block] < 0 || level < 0)
+  {
+    return false;
+  }
+  const std::size_t at = static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(level);
+  if (at >= this->entries.size() || this->entries[at].target != target)
+  {
+    return false;
+  }
+  const Entry& e = this->entries[at];
+  errors.inner[0] = e.errors[0];
+  errors.inner[1] = e.errors[1];
+  errors.innerFrozen = e.frozen;
+  ++this->answered;
+  return true;
+}
+
+void InnerErrorMemo::keep(const Quadtree& qt, int block, int level, int target, const PartErrors& errors)
+{
+  if (block < 0 || block >= static_cast<int>(this->first.size()) || level < 0 ||
+    level >= qt.blockTopLevels[block])
+  {
+    return; // a block at its top level has no target, hence no inner part that morphs
+  }
+  if (this->first[block] < 0)
+  {
+    this->first[block] = static_cast<int32_t>(this->entries.size());
+    this->entries.resize(this->entries.size() + qt.blockTopLevels[block]);
+  }
+  Entry& e = this->entries[static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(level)];
+  e.errors[0] = errors.inner[0];
+  e.errors[1] = errors.inner[1];
+  e.target = static_cast<int8_t>(target);
+  e.frozen = errors.innerFrozen;
+}
+
+void InnerErrorMemo::reset(int blocks)
+{
+  this->first.assign(static_cast<std::size_t>(blocks), -1);
+  this->entries.clear();
+  this->answered = 0;
+}
+
 } // namespace gmm

@@ -99,4 +99,37 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts,
   PartErrors& errors, MorphPartScratch& scratch);
 
+// Inner-grid part errors by block and level, kept while the heights are the same. They
+// depend on the block and its level alone (its target is the next valid level), so a block
+// that comes back to a level, whatever the frames between (a jump of the camera, another
+// tau, a stretch out of view), takes them instead of rasterising its inner grid again: at
+// 4097^2 and tau 1 a frame whose blocks all change configuration spent 45 % of its morph
+// time there. A block's entries (one per level below its top, 24 bytes each) are made the
+// first time it morphs, so memory follows the blocks drawn (at most 31 MB at 16385^2 and
+// block 32, once every block has morphed).
+class InnerErrorMemo
+{
+public:
+  // The kept errors of `block` at `level` with `target` into `errors` (inner, innerFrozen);
+  // false when there are none.
+  bool take(int block, int level, int target, PartErrors& errors) const;
+  // Keeps `errors`' inner part for `block` at `level` with `target`.
+  void keep(const Quadtree& qt, int block, int level, int target, const PartErrors& errors);
+  // Forgets everything, for `blocks` blocks.
+  void reset(int blocks);
+  // Lookups answered from what was kept, since the last reset.
+  std::size_t taken() const { return this->answered; }
+
+private:
+  struct Entry
+  {
+    double errors[2] = { 0.0, 0.0 };
+    int8_t target = -2; // -2: not measured
+    bool frozen = false;
+  };
+  std::vector<int32_t> first; // per block: its first entry (level 0), or -1
+  std::vector<Entry> entries;
+  mutable std::size_t answered = 0;
+};
+
 } // namespace gmm

@@ -629,8 +629,10 @@ TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
       ++checked;
     }
   }
-  std::printf("[ morph cache ] %d drawn blocks checked, %d went back to the key before\n", checked, returns);
+  std::printf("[ morph cache ] %d drawn blocks checked, %d went back to the key before, %zu inner "
+              "grids taken from InnerErrorMemo\n", checked, returns, cache.inner.taken());
   EXPECT_GE(returns, 20) << "the flight does not exercise the key before";
+  EXPECT_GE(cache.inner.taken(), 20u) << "the flight does not exercise the inner-grid memo";
 }
 
 TEST(MorphRamp, FloorIsBelowThePath)
