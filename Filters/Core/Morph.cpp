@@ -366,6 +366,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       chainAt[k] = chainIndex(qt, drawn[k], levels[drawn[k]]);
     }
   }
+  refreshPartErrors(hf, qt, out, cache);
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
@@ -376,36 +377,6 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
     const BlockConfig& cfg = configs[k];
     const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
-    std::array<int8_t, 10> key{ static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
-      static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
-      static_cast<int8_t>(cfg.edgeLevel[3]), out.blockTarget[b], edges[0]->target, edges[1]->target,
-      edges[2]->target, edges[3]->target };
-    if (key != state.key)
-    {
-      if (key == state.previousKey)
-      {
-        std::swap(state.key, state.previousKey); // part errors depend on the key only
-        std::swap(state.errors, state.previousErrors);
-      }
-      else
-      {
-        state.previousKey = state.key;
-        state.previousErrors = state.errors;
-        const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target,
-          edges[3]->target };
-        unsigned parts = changedMorphParts(state.key, key);
-        if ((parts & 1u) && cache.inner.take(b, cfg.level, out.blockTarget[b], state.errors))
-        {
-          parts &= ~1u;
-        }
-        updateMorphPartErrors(hf, qt, b, cfg, out.blockTarget[b], edgeTarget, parts, state.errors, cache.scratch);
-        if (parts & 1u)
-        {
-          cache.inner.keep(qt, b, cfg.level, out.blockTarget[b], state.errors);
-        }
-        state.key = key;
-      }
-    }
     const PartErrors& pe = state.errors;
     morphs[k] = 1;
     const double x = budget[k];

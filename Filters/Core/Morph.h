@@ -38,6 +38,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace gmm
@@ -106,7 +107,11 @@ struct MorphCache
   uint32_t frame = 0;                   // frames computed with this cache
   const void* heights = nullptr;        // the heights the errors are of (reset on change)
   MorphPartScratch scratch;
+  std::vector<MorphPartScratch> workerScratch; // for the threads beyond the calling one
   InnerErrorMemo inner;                 // inner-grid errors by block and level
+  // Per frame (scratch): the drawn blocks whose parts are measured (index k into the drawn
+  // blocks, and the parts as a MorphBounds.h mask).
+  std::vector<std::pair<std::size_t, unsigned>> measures;
   // Per drawn block of a frame (scratch): its slot, its configuration as Tessellate draws
   // it and its four edges, found once and read by every pass.
   std::vector<int32_t> drawnSlots;
@@ -145,6 +150,15 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
   const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr,
   const std::vector<BlockConfig>* drawnConfigs = nullptr);
+
+// computeMorph's first pass over the drawn blocks that morph (out.blocks[k] with a target
+// and cache.budgets[k] >= 0; cache.drawnSlots, configs and edges filled, and the edges'
+// levels and targets set): brings each slot's part errors to the block's key (level, edge
+// levels, target, edge targets) and records that key. A block back at its key before takes
+// that key's errors; the inner grid comes from cache.inner where kept; the other parts the
+// key changed are measured (updateMorphPartErrors), on all cores when many blocks need it
+// (a jump of the camera or another tau changes nearly all). MorphPartCache.cpp.
+void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFrame& out, MorphCache& cache);
 
 // The four edges of `block` in a frame: South, East, North, West (Tessellate's Side).
 std::array<const MorphEdge*, 4> blockEdges(const Quadtree& qt, const MorphFrame& f, int block);

@@ -1,5 +1,6 @@
 // Spreading a loop over cores: parallelChunks for the scans of the samples (validation,
-// block boxes, the heights' hash, synthetic terrain, the mapper's slopes), workerCount for
+// block boxes, the heights' hash, synthetic terrain, the mapper's slopes), parallelItems
+// for items that need per-worker scratch (geomorphing's part errors), workerCount for
 // every thread count (the error table's build, whose caller reports progress instead of
 // working, keeps its own two-phase loop).
 //
@@ -48,6 +49,33 @@ void parallelChunks(std::size_t count, std::size_t chunk, int threads, Fn&& fn)
     pool.emplace_back(work);
   }
   work();
+  for (std::thread& t : pool)
+  {
+    t.join();
+  }
+}
+
+// Calls fn(worker, item) for every item in [0, count), on up to `threads` threads (0 = the
+// hardware's). Items are taken one at a time from a shared counter; `worker` is 0 on the
+// calling thread and 1 .. workerCount(threads, count) - 1 on the others, so that fn can keep
+// per-worker scratch. fn must be safe to run concurrently on different items.
+template <class Fn>
+void parallelItems(std::size_t count, int threads, Fn&& fn)
+{
+  std::atomic<std::size_t> next{ 0 };
+  auto work = [&](unsigned worker) {
+    for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1))
+    {
+      fn(worker, i);
+    }
+  };
+  const unsigned workers = workerCount(threads, count);
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w)
+  {
+    pool.emplace_back(work, w);
+  }
+  work(0);
   for (std::thread& t : pool)
   {
     t.join();
