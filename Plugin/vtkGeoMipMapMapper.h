@@ -238,7 +238,8 @@ public:
    * shades a mesh with point normals. Inside a coarse triangle the shading then loses the
    * detail of the samples it skips (the geometry keeps its certified error), and a
    * fragment fetches nothing for its normal, so a frame whose cost is its pixels is
-   * cheaper (on llvmpipe the default per-fragment normal is most of that cost). Overrides
+   * cheaper (on llvmpipe the default per-fragment normal is most of that cost:
+   * geomipmap-bench at 4097^2 draws 1.2 - 2.2x faster frames with it). Overrides
    * SlopeTexture (no slope texture is made). Off by default.
    */
   vtkSetMacro(VertexNormals, bool);
