@@ -305,14 +305,15 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   }
 }
 
-bool InnerErrorMemo::take(int block, int level, int target, PartErrors& errors) const
+bool InnerErrorMemo::take(const Quadtree& qt, int block, int level, int target, PartErrors& errors) const
 {
-  if (block < 0 || block >= static_cast<int>(this->first.size()) || this->first[block] < 0 || level < 0)
+  if (block < 0 || block >= static_cast<int>(this->first.size()) || this->first[block] < 0 || level < 0 ||
+    level >= qt.blockTopLevels[block])
   {
-    return false;
+    return false; // nothing kept, or a level past the block's entries
   }
   const std::size_t at = static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(level);
-  if (at >= this->entries.size() || this->entries[at].target != target)
+  if (this->entries[at].target != target)
   {
     return false;
   }

@@ -112,7 +112,7 @@ class InnerErrorMemo
 public:
   // The kept errors of `block` at `level` with `target` into `errors` (inner, innerFrozen);
   // false when there are none.
-  bool take(int block, int level, int target, PartErrors& errors) const;
+  bool take(const Quadtree& qt, int block, int level, int target, PartErrors& errors) const;
   // Keeps `errors`' inner part for `block` at `level` with `target`.
   void keep(const Quadtree& qt, int block, int level, int target, const PartErrors& errors);
   // Forgets everything, for `blocks` blocks.

@@ -55,7 +55,7 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
     state.previousKey = state.key;
     state.previousErrors = state.errors;
     unsigned parts = changedMorphParts(state.key, key);
-    if ((parts & 1u) && cache.inner.take(b, cfg.level, out.blockTarget[b], state.errors))
+    if ((parts & 1u) && cache.inner.take(qt, b, cfg.level, out.blockTarget[b], state.errors))
     {
       parts &= ~1u;
     }
