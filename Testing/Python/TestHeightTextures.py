@@ -243,14 +243,16 @@ for name, z, scale in (("no nodata", np.round(zf).astype(np.float32), 1.0), ("a 
     mesh.GetPointData().SetNormals(normals)
     stock_vertex = frame(refscene.stock_actor(mesh))
     drawn = refscene.covered(stock_vertex, BG)
-    for share in (False, True):
+    # One texture layer or band, and 5 x 3 layers or 3 bands of four samples a texel.
+    for tile, share in ((0, False), (0, True), (64, False), (64, True)):
         mv, av = ours(img, ShareHeights=share, VertexNormals=True, SlopeTexture=True, PixelError=0.0,
-                      HeightScale=scale)
+                      HeightScale=scale, MaximumTileSize=tile)
         vertex = frame(av)
         vertex_bytes, where = mv.GetGPUMemoryBytes(), "read in place" if mv.GetHeightsShared() else "from the texture"
-        mp, ap = ours(img, ShareHeights=share, PixelError=0.0)  # per fragment, no slope texture
+        mp, ap = ours(img, ShareHeights=share, PixelError=0.0, MaximumTileSize=tile)  # per fragment
         frame(ap)
         d = differing(stock_vertex, vertex, 2) / drawn.mean()
+        where += f", MaximumTileSize {tile}"
         check(drawn.mean() > 0.1 and d < 0.005 and vertex_bytes == mp.GetGPUMemoryBytes(),
               f"normals per vertex, {name}, heights {where}, tau 0: {100 * d:.3f} % of the terrain's "
               f"pixels differ by > 2 from the stock mapper's with the same point normals; "
