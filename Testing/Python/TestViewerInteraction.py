@@ -18,7 +18,8 @@ over the synthetic terrain, 513^2 at 640 x 360:
 - 'f': fly mode: Up moves along the view direction, a drag turns the view by 0.2 degrees a
   pixel with the eye fixed, Page Down stops at the clearance above the ground; 'f' again:
   orbit about the terrain point in the middle of the view;
-- 'g' toggles geomorphing (the mapper's Geomorphing, on at start); 'h' shows every key,
+- 'g' toggles geomorphing (the mapper's Geomorphing, on at start); 'n' toggles the shading
+  normals per vertex / per pixel (VertexNormals; the picture changes); 'h' shows every key,
   and Documentation/user-guide.md's key table lists every one;
 - looking away from the terrain (VTK then skips the mapper), the overlay says so and shows
   no stale figures;
@@ -227,6 +228,16 @@ check(not mapper.GetGeomorphing() and "geomorphing off" in v.message
       and mapper.GetPixelError() == tau_before, f"'g': off ({v.message!r})")
 play(key("g"))
 check(mapper.GetGeomorphing() and "geomorphing on" in v.message, f"'g' again: on ({v.message!r})")
+# --- Shading normals: 'n' toggles the mapper's VertexNormals (off at start) --------------
+check(not mapper.GetVertexNormals(), "normals per pixel at start")
+per_pixel = refscene.grab(v.window)[60:H - 80].astype(int)  # between the status line and statistics
+play(key("n"))
+per_vertex = refscene.grab(v.window)[60:H - 80].astype(int)
+changed = float((np.abs(per_pixel - per_vertex).max(axis=2) > 0).mean())
+check(mapper.GetVertexNormals() and "per vertex" in v.message and changed > 0.01,
+      f"'n': normals per vertex ({v.message!r}; {100 * changed:.1f} % of the pixels changed)")
+play(key("n"))
+check(not mapper.GetVertexNormals() and "per pixel" in v.message, f"'n' again: per pixel ({v.message!r})")
 play(key("h"))
 check(all(doc in v.overlay.status.GetInput() for _, _, doc in viewer_module.KEYS),
       "'h': the help lists every key")

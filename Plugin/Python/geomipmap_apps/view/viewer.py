@@ -38,6 +38,7 @@ KEYS = (
     (("l", "L"), "freeze", "l  freeze the LOD on / off (inspect it from elsewhere)"),
     (("f", "F"), "mode_switch", "f  fly mode / orbit mode"),
     (("g", "G"), "geomorph", "g  geomorphing on / off (smooth level changes)"),
+    (("n", "N"), "normals", "n  shading normals per vertex / per pixel"),
     (("s", "S"), "screenshot", "s  save a screenshot (PNG, the window's size)"),
     (("r", "R"), "reset", "r  reset the camera"),
     (("o", "O"), "overlay_toggle", "o  overlay on / off"),
@@ -382,6 +383,12 @@ class Viewer:
         self.mapper.SetGeomorphing(not self.mapper.GetGeomorphing())
         self._status("geomorphing on: levels change smoothly" if self.mapper.GetGeomorphing()
                      else "geomorphing off: levels switch at once", render=True)
+
+    def normals(self):
+        self.mapper.SetVertexNormals(not self.mapper.GetVertexNormals())
+        self._status("normals per vertex: faster frames, less shading detail in coarse "
+                     "triangles" if self.mapper.GetVertexNormals()
+                     else "normals per pixel: full-resolution shading", render=True)
 
     def screenshot(self):
         """Writes the current frame, overlay included, at the window's size; returns the
