@@ -305,12 +305,18 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   }
 }
 
+bool InnerErrorMemo::hasLevel(const Quadtree& qt, int block, int level) const
+{
+  // A block at its top level has no target, hence no inner part that morphs.
+  return block >= 0 && block < static_cast<int>(this->first.size()) && level >= 0 &&
+    level < qt.blockTopLevels[block];
+}
+
 bool InnerErrorMemo::take(const Quadtree& qt, int block, int level, int target, PartErrors& errors) const
 {
-  if (block < 0 || block >= static_cast<int>(this->first.size()) || this->first[block] < 0 || level < 0 ||
-    level >= qt.blockTopLevels[block])
+  if (!this->hasLevel(qt, block, level) || this->first[block] < 0)
   {
-    return false; // nothing kept, or a level past the block's entries
+    return false;
   }
   const std::size_t at = static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(level);
   if (this->entries[at].target != target)
@@ -327,10 +333,9 @@ bool InnerErrorMemo::take(const Quadtree& qt, int block, int level, int target, 
 
 void InnerErrorMemo::keep(const Quadtree& qt, int block, int level, int target, const PartErrors& errors)
 {
-  if (block < 0 || block >= static_cast<int>(this->first.size()) || level < 0 ||
-    level >= qt.blockTopLevels[block])
+  if (!this->hasLevel(qt, block, level))
   {
-    return; // a block at its top level has no target, hence no inner part that morphs
+    return;
   }
   if (this->first[block] < 0)
   {

@@ -121,6 +121,8 @@ public:
   std::size_t taken() const { return this->answered; }
 
 private:
+  // Whether `block` has an entry for `level` once it has entries (a level below its top).
+  bool hasLevel(const Quadtree& qt, int block, int level) const;
   struct Entry
   {
     double errors[2] = { 0.0, 0.0 };

@@ -26,35 +26,6 @@ inline unsigned workerCount(int threads, std::size_t tasks)
   return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(std::max(want, 1u), tasks)));
 }
 
-// Calls fn(begin, end) for consecutive ranges of at most `chunk` items covering [0, count),
-// on up to `threads` threads (0 = the hardware's; the calling thread is one of them). fn must
-// be safe to run concurrently on disjoint ranges; ranges are taken in increasing order.
-template <class Fn>
-void parallelChunks(std::size_t count, std::size_t chunk, int threads, Fn&& fn)
-{
-  chunk = std::max<std::size_t>(chunk, 1);
-  const std::size_t chunks = (count + chunk - 1) / chunk;
-  std::atomic<std::size_t> next{ 0 };
-  auto work = [&]() {
-    for (std::size_t c = next.fetch_add(1); c < chunks; c = next.fetch_add(1))
-    {
-      const std::size_t begin = c * chunk;
-      fn(begin, std::min(count, begin + chunk));
-    }
-  };
-  const unsigned workers = workerCount(threads, chunks);
-  std::vector<std::thread> pool;
-  for (unsigned w = 1; w < workers; ++w)
-  {
-    pool.emplace_back(work);
-  }
-  work();
-  for (std::thread& t : pool)
-  {
-    t.join();
-  }
-}
-
 // Calls fn(worker, item) for every item in [0, count), on up to `threads` threads (0 = the
 // hardware's). Items are taken one at a time from a shared counter; `worker` is 0 on the
 // calling thread and 1 .. workerCount(threads, count) - 1 on the others, so that fn can keep
@@ -80,6 +51,19 @@ void parallelItems(std::size_t count, int threads, Fn&& fn)
   {
     t.join();
   }
+}
+
+// Calls fn(begin, end) for consecutive ranges of at most `chunk` items covering [0, count),
+// on up to `threads` threads (0 = the hardware's; the calling thread is one of them). fn must
+// be safe to run concurrently on disjoint ranges; ranges are taken in increasing order.
+template <class Fn>
+void parallelChunks(std::size_t count, std::size_t chunk, int threads, Fn&& fn)
+{
+  chunk = std::max<std::size_t>(chunk, 1);
+  parallelItems((count + chunk - 1) / chunk, threads, [&](unsigned, std::size_t c) {
+    const std::size_t begin = c * chunk;
+    fn(begin, std::min(count, begin + chunk));
+  });
 }
 
 } // namespace gmm
