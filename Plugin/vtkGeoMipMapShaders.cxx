@@ -97,10 +97,16 @@ std::string FetchFunctions(const vtkGeoMipMapShaders::Options& o)
   return s;
 }
 
-// The fragment's level-0 triangle (Tessellate.h's quad split along its (0,0)-(1,1)
-// diagonal): its vertices c, c + d, c + (1, 1) and their barycentric weights.
+// Whether a stored height is a height (vertex and fragment shaders).
 const char* const kValid =
   "bool gmmValid(float h) { return abs(h) <= 1.0e38; } // false for NaN, +-Inf, sentinels\n";
+// The unit normal (model coordinates) of slopes g = (dh/dx, dh/dy) of the stored heights,
+// the height scale applied: every normal source below ends in it.
+const char* const kNormalOfSlope =
+  "vec3 gmmNormalOfSlope(vec2 g) { return normalize(vec3(-gmmHeightScale * g, 1.0)); }\n";
+
+// The fragment's level-0 triangle (Tessellate.h's quad split along its (0,0)-(1,1)
+// diagonal): its vertices c, c + d, c + (1, 1) and their barycentric weights.
 const char* const kQuad =
   "in vec2 gmmGridVSOutput;\n"
   "struct GmmTri { ivec2 c; ivec2 d; vec3 w; };\n"
@@ -127,7 +133,7 @@ const char* const kNormalOnTriangle =
   "  vec2 s0, s1, s2;\n"
   "  gmmTriangleSlopes(t, s0, s1, s2);\n"
   "  vec2 g = t.w.x * s0 + t.w.y * s1 + t.w.z * s2;\n"
-  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
+  "  return gmmNormalOfSlope(g);\n"
   "}\n";
 // Slopes from the slope texture (gmm::sampleSlope, made once at upload).
 const char* const kSlopeFromTexture =
@@ -187,7 +193,7 @@ const char* const kVertexNormal =
   "{\n"
   "  vec2 g = gmmSlope(p, hc, gmmHeightIn(p - ivec2(1, 0)), gmmHeightIn(p + ivec2(1, 0)),\n"
   "    gmmHeightIn(p - ivec2(0, 1)), gmmHeightIn(p + ivec2(0, 1)));\n"
-  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
+  "  return gmmNormalOfSlope(g);\n"
   "}\n";
 // One layer: the slopes bilinearly filtered at the fragment (one fetch; the exact
 // triangle interpolation above takes three, and differs from it by a fraction of a degree).
@@ -196,7 +202,7 @@ const char* const kNormalBilinear =
   "vec3 gmmNormalMC(GmmTri t)\n"
   "{\n"
   "  vec2 g = texture(gmmSlopes, vec3((gmmGridVSOutput + 0.5) * gmmTileScale, 0.0)).rg;\n"
-  "  return normalize(vec3(-gmmHeightScale * g, 1.0));\n"
+  "  return gmmNormalOfSlope(g);\n"
   "}\n";
 
 // A draped image at the fragment: texture coordinates are affine in the grid position,
@@ -392,7 +398,7 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
       "uniform float gmmHeightRef;   // stored height at the model-coordinate origin\n"
       "out vec2 gmmGridVSOutput;\n" +
       (o.Color == Options::MapHeights ? "out float gmmHeightVSOutput;\n" : "") +
-      (vertexNormals ? std::string(kValid) + kSlopeRule + kVertexNormal : std::string()) +
+      (vertexNormals ? std::string(kValid) + kSlopeRule + kNormalOfSlope + kVertexNormal : std::string()) +
       (o.Morph ? kMorph : ""));
   // Sample (i, j) of vertex id j * nx + i without an integer division (scalarised, hence
   // slow, on software rasterisers): a float estimate of j (relative error 2^-24), refined
@@ -447,9 +453,10 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   vtkShaderProgram::Substitute(fs, "//GMM::Dec",
     FetchFunctions(o) + kValid + kQuad +
       (!lit ? std::string()
-            : o.SlopesFromHeights ? std::string(kSlopeRule) + kSlopeFromHeights + kNormalOnTriangle
-            : o.SingleLayer       ? std::string(kNormalBilinear)
-                                  : std::string(kSlopeFromTexture) + kNormalOnTriangle) +
+            : kNormalOfSlope +
+              (o.SlopesFromHeights ? std::string(kSlopeRule) + kSlopeFromHeights + kNormalOnTriangle
+                : o.SingleLayer    ? std::string(kNormalBilinear)
+                                   : std::string(kSlopeFromTexture) + kNormalOnTriangle)) +
       ColorFunctions(o) + (o.Drape ? kDrape : ""));
   // The level-0 triangle under the fragment, where full-resolution values are interpolated
   // per fragment (colouring arrays; normals of DEMs in several layers or without a slope

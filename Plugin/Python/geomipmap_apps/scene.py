@@ -99,8 +99,7 @@ class Scene:
         """A Scene with the rendering options of command.add_rendering_options."""
         return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
                    lighting=not args.no_lighting, size=args.size, drape=args.texture,
-                   drape_size=args.texture_size,
-                   vertex_normals=args.vertex_normals, **kw)
+                   drape_size=args.texture_size, vertex_normals=args.vertex_normals, **kw)
 
     def _colour(self, heights, spec):
         if spec == "elevation":
