@@ -7,7 +7,9 @@ values, PNG frames that are not blank and show terrain under a sky, the summary 
 stdout, the measured screen error of every frame within tau (513 x 513 at tau 2: measured
 1.2 .. 1.6 px; with the engine's projection halved, 2.2 .. 2.7 px, so the check bites);
 then a line flight as a command (the launcher) with terrain following (--clearance) and
---every / --seconds, and the same with --vertex-normals (similar pictures, not the same).
+--every / --seconds, the same with --vertex-normals (similar pictures, not the same), and
+with --no-geomorphing (fewer triangles: geomorphing's level path holds blocks finer than tau
+needs).
 """
 
 import glob
@@ -64,4 +66,21 @@ for name in sorted(os.path.basename(p) for p in glob.glob(os.path.join(d2, "fram
     check(a.shape == b.shape and 0 < (diff > 0).mean() and (diff > 24).mean() < 0.05,
           f"{name}: --vertex-normals changed {100 * (diff > 0).mean():.1f} % of the pixels, "
           f"{100 * (diff > 24).mean():.2f} % by more than 24 levels")
+
+# --no-geomorphing reaches the mapper: without the level path each block takes the coarsest
+# level within tau, so the same flight draws fewer triangles (513^2: the 129^2 line flight
+# above is drawn near full resolution either way).
+counts = {}
+for flag in ("", "--no-geomorphing"):
+    d4 = os.path.join(out, "line-513" + flag.replace("--", "-"))
+    rc, so, se = run(exe, "--path", "line", "--clearance", "150", "--seconds", "1", "--fps",
+                     "8", "--every", "8", "--size", "200x120", "--synthetic-size", "513",
+                     "--tau", "2", "--out", d4, *([flag] if flag else []))
+    check(rc == 0, f"line flight {flag} exited {rc}: {se.strip()}")
+    counts[flag] = sum(int(r["triangles"]) for r in read_csv(os.path.join(d4, "flight.csv")))
+print(f"line flight 513^2, tau 2: {counts['']} triangles with geomorphing, "
+      f"{counts['--no-geomorphing']} without")
+check(0 < counts["--no-geomorphing"] < counts[""], f"--no-geomorphing: "
+      f"{counts['--no-geomorphing']} triangles over the flight, not fewer than {counts['']} "
+      f"with geomorphing")
 print("TestFlySynthetic: passed")

@@ -113,7 +113,8 @@ def add_terrain_options(parser, dem_positional=False):
 
 def add_rendering_options(parser, size=(1280, 720)):
     """The rendering options: --tau, --block-size, --size, --color, --texture,
-    --texture-size, --no-lighting, --vertex-normals (read by scene.Scene.from_args); returns
+    --texture-size, --no-lighting, --vertex-normals, --no-geomorphing (read by
+    scene.Scene.from_args); returns
     the group so that a tool can add its own."""
     g = parser.add_argument_group("rendering")
     g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
@@ -135,6 +136,10 @@ def add_rendering_options(parser, size=(1280, 720)):
                    help="shade with normals at the drawn vertices instead of at every pixel "
                    "(less shading detail in coarse triangles; faster frames on a software "
                    "renderer such as llvmpipe)")
+    g.add_argument("--no-geomorphing", action="store_true",
+                   help="levels switch at once (pops of up to --tau pixels) instead of gliding; "
+                   "each block takes the coarsest level within --tau, so wide views draw fewer "
+                   "triangles (up to 4x fewer at tau 1)")
     return g
 
 

@@ -43,8 +43,8 @@ class Scene:
     "texture:FILE.png" (stretched over the extent). drape: a georeferenced image
     (orthophoto) laid over that colouring by its coordinates (vtkGeoMipMapImageDrape),
     resampled to at most drape_size pixels a side. vertex_normals: the mapper's
-    VertexNormals (normals per vertex instead of per fragment). size: the window's (width,
-    height).
+    VertexNormals (normals per vertex instead of per fragment). geomorphing: the mapper's
+    Geomorphing (smooth level changes, on by default). size: the window's (width, height).
     on_screen: a window on the display instead of off-screen rendering. title: the
     window's name. messages: VTKMessages for errors (texture reading). window: a render
     window to add the terrain renderer to (one that showed loading progress), else a new
@@ -54,7 +54,8 @@ class Scene:
 
     def __init__(self, image, heights, block_size=None, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
-                 messages=None, window=None, drape=None, drape_size=8192, vertex_normals=False):
+                 messages=None, window=None, drape=None, drape_size=8192, vertex_normals=False,
+                 geomorphing=True):
         import geomipmap
 
         self.messages = messages or VTKMessages()
@@ -64,6 +65,7 @@ class Scene:
             self.mapper.SetBlockSize(block_size)
         self.mapper.SetPixelError(tau)
         self.mapper.SetVertexNormals(vertex_normals)
+        self.mapper.SetGeomorphing(geomorphing)
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)
         self._colour(heights, color)
@@ -99,7 +101,8 @@ class Scene:
         """A Scene with the rendering options of command.add_rendering_options."""
         return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
                    lighting=not args.no_lighting, size=args.size, drape=args.texture,
-                   drape_size=args.texture_size, vertex_normals=args.vertex_normals, **kw)
+                   drape_size=args.texture_size, vertex_normals=args.vertex_normals,
+                   geomorphing=not args.no_geomorphing, **kw)
 
     def _colour(self, heights, spec):
         if spec == "elevation":

@@ -5,6 +5,9 @@ Methods (same window, camera path, colouring and lighting, one at a time):
   ours     vtkGeoMipMapMapper at each tau
   ours-vn  the same mapper and triangles with VertexNormals on (normals per vertex, as the
            stock mapper shades the other methods' meshes, instead of per fragment)
+  ours-vn-nomorph  ours-vn with Geomorphing off: levels switch at once (pops of up to tau)
+           and each block takes the coarsest level within tau, not geomorphing's level
+           path; what smooth level changes cost
   greedy   vtkGreedyTerrainDecimation at ours' mean triangle count per tau (built once)
   uniform  every s-th sample, s chosen for the same triangle count
   quadric  vtkQuadricClustering (what vtkQuadricLODActor uses) at the same count
@@ -24,7 +27,7 @@ from . import report
 from .run import run_dem
 
 PROG = "geomipmap-bench"
-METHODS = ("brute", "ours", "ours-vn", "greedy", "uniform", "quadric")
+METHODS = ("brute", "ours", "ours-vn", "ours-vn-nomorph", "greedy", "uniform", "quadric")
 
 
 def _list(kind, allow_empty=False):

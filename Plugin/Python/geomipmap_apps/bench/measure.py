@@ -38,11 +38,17 @@ class Bench:
         self.error = geomipmap.vtkGeoMipMapScreenError()
         self.error.SetHeightfield(image)
         self.error.SetViewportSize(*size)
-        self.filter = geomipmap.vtkGeoMipMapFilter()
-        self.filter.SetInputData(image)
-        self.filter.SetCamera(scene.renderer.GetActiveCamera())
-        self.filter.SetViewportSize(*size)
-        self.filter.SetBlockSize(scene.mapper.GetBlockSize())
+        # The mapper's triangles (and morphed heights) per frame, one filter per
+        # geomorphing setting: each keeps its own morph history, as the mapper does.
+        self.filters = {}
+        for geomorphing in (True, False):
+            f = geomipmap.vtkGeoMipMapFilter()
+            f.SetInputData(image)
+            f.SetCamera(scene.renderer.GetActiveCamera())
+            f.SetViewportSize(*size)
+            f.SetBlockSize(scene.mapper.GetBlockSize())
+            f.SetGeomorphing(geomorphing)
+            self.filters[geomorphing] = f
 
     def camera(self, frame):
         """Frame's camera; one clipping range for every method (from the terrain's bounds),
@@ -131,13 +137,14 @@ class Bench:
                 "uncovered": e.GetNumberOfUncoveredSamples(),
                 "triangles": mesh.GetNumberOfPolys()}
 
-    def ours_mesh(self, tau):
+    def ours_mesh(self, tau, geomorphing=True):
         """The mapper's triangles for the current camera (vtkGeoMipMapFilter, same engine
-        call, same camera and viewport)."""
-        self.filter.SetPixelError(tau)
-        self.filter.Modified()
-        self.filter.Update()
-        return self.filter.GetOutput()
+        call, same camera and viewport), with geomorphing on (the default) or off."""
+        f = self.filters[geomorphing]
+        f.SetPixelError(tau)
+        f.Modified()
+        f.Update()
+        return f.GetOutput()
 
 
 SHADE_TOLERANCE = 24  # grey levels, largest channel difference

@@ -125,7 +125,8 @@ def summarise(rows):
     return out
 
 
-OURS = ("ours", "ours-vn")  # the mapper, shaded per fragment (default) or per vertex
+# The mapper: shaded per fragment (default) or per vertex, and per vertex without geomorphing.
+OURS = ("ours", "ours-vn", "ours-vn-nomorph")
 
 
 def pareto(groups, dem, method="ours"):
@@ -212,7 +213,8 @@ def plot(groups, filename):
     rows = (len(dems) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.2 * rows), squeeze=False)
     # Fixed colours: the same method looks the same in every panel.
-    style = {"ours": ("o-", "C0"), "ours-vn": ("D-", "C4"), "greedy": ("s--", "C1"),
+    style = {"ours": ("o-", "C0"), "ours-vn": ("D-", "C4"), "ours-vn-nomorph": ("P-", "C5"),
+             "greedy": ("s--", "C1"),
              "uniform": ("^--", "C2"), "quadric": ("v--", "C3")}
     floor = 0.05  # log axes: a measured 0 px is drawn at this floor
     for ax, dem in zip(axes.ravel(), dems):

@@ -28,6 +28,10 @@ KNOWN_FILES = {
 }
 
 
+# The mapper's configurations measured: (VertexNormals, Geomorphing) per method.
+OURS_SETTINGS = {"ours": (False, True), "ours-vn": (True, True), "ours-vn-nomorph": (True, False)}
+
+
 class Config:
     """One timed series: a method (and tau), its actor and how to get its frame's mesh."""
 
@@ -121,18 +125,21 @@ def _build(label, args, methods, over, budget_gb, bench, heights, image, skip, o
         row["render_ms"] = row["total_ms"] - row["lod_ms"] - row["upload_ms"]
         row["certified_px"] = m.GetMaximumScreenSpaceError()
 
-    def ours_before(tau, vertex_normals):
+    def ours_before(tau, vertex_normals, geomorphing):
         def before():
             m.SetPixelError(tau)
             m.SetVertexNormals(vertex_normals)
+            m.SetGeomorphing(geomorphing)
         return before
 
-    # ours-vn: the same mapper, selection and triangles, shaded per vertex.
-    for method in (x for x in ("ours", "ours-vn") if x in methods):
+    # ours-vn: the same mapper, selection and triangles, shaded per vertex; ours-vn-nomorph:
+    # also without geomorphing (its own selection: no level path, the levels tau allows).
+    for method in (x for x in OURS_SETTINGS if x in methods):
+        vertex_normals, geomorphing = OURS_SETTINGS[method]
         for tau in args.tau:
             configs.append(Config(method, tau, bench.scene.actor,
-                                  lambda f, tau=tau: bench.ours_mesh(tau),
-                                  before=ours_before(tau, method == "ours-vn"),
+                                  lambda f, tau=tau, g=geomorphing: bench.ours_mesh(tau, g),
+                                  before=ours_before(tau, vertex_normals, geomorphing),
                                   extra=ours_extra))
     targets = _targets(args, bench)
     nodata = not np.isfinite(heights.z).all()
