@@ -1,0 +1,262 @@
+// Geomorphing's pops by cause: the popping flight of measure_popping.py replayed through the
+// engine (Engine::update, then computeMorph with one cache, as the mapper draws a frame),
+// and every full-resolution sample in view that moves on screen between two frames classed
+// by what changed at its block:
+//   merge      the block was under a merged node (or not drawn) in one of the two frames;
+//   switch     its level changed, split by the coarser level's cell the sample lies in: a
+//              south-east / north-west corner cell of the ring (split along its
+//              anti-diagonal, which the finer level does not follow), another ring cell
+//              (side strips, fans toward the edge level), or an inner-grid cell;
+//   neighbour  a neighbour's level changed (the fans of the strip between them);
+//   factor     none of those: only the morph factors moved (the camera's own motion).
+// A switch whose morphed surface at factor 1 were the next level's would move nothing, so
+// the switch and neighbour classes measure where the levels do not nest, which geomorphing's
+// level path hides by switching blocks far below their budget (benchmarks-core.md, session
+// 26). The flight, terrain and camera are measure_popping.py's (fractal n x n, 30 m, seed 1;
+// a straight line across the middle, 250 m above the highest sample, 20 degrees down,
+// 1280 x 720, fov 50), and its worst pop, mean of frames' worst and triangles come out the
+// same here (the screen measure is Testing/Core's, independent of the engine's bound).
+//
+//   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--step 0.04]
+//                      [--frames 120] [--threshold 0.3] [--merges]
+//
+// --range 0 turns geomorphing off (levels switch at once). A measurement, not a test.
+#include "Engine.h"
+#include "Morph.h"
+#include "SyntheticTerrain.h"
+#include "../Core/CoreTestUtil.h"
+#include "../Core/MorphTestUtil.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+double argOr(int argc, char** argv, const char* name, double fallback)
+{
+  for (int k = 1; k + 1 < argc; ++k)
+  {
+    if (std::strcmp(argv[k], name) == 0)
+    {
+      return std::atof(argv[k + 1]);
+    }
+  }
+  return fallback;
+}
+
+bool flag(int argc, char** argv, const char* name)
+{
+  for (int k = 1; k < argc; ++k)
+  {
+    if (std::strcmp(argv[k], name) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+enum Cause
+{
+  Merge,
+  SwitchCorner,
+  SwitchRing,
+  SwitchInner,
+  Neighbour,
+  Factor,
+  CauseCount
+};
+
+const char* const kCauseNames[CauseCount] = { "merge or split of a merged node",
+  "switch: SE / NW ring corner cell", "switch: other ring cell (strips)", "switch: inner grid cell",
+  "a neighbour's switch (its strip)", "factors alone (camera motion)" };
+
+struct CauseTally
+{
+  long samples = 0; // samples over the threshold, summed over frames
+  int frames = 0;   // frames with at least one
+  double worst = 0.0;
+};
+
+// The block whose cell holds sample (i, j): the cell to its north-east, clamped to the grid.
+int blockOfSample(const gmm::Quadtree& qt, const gmm::Heightfield& hf, int i, int j, int& bi, int& bj)
+{
+  const auto bandOf = [](const std::vector<int>& start, int s, int bands) {
+    const int b = static_cast<int>(std::upper_bound(start.begin(), start.end(), s) - start.begin()) - 1;
+    return std::min(std::max(b, 0), bands - 1);
+  };
+  const int c = bandOf(qt.colStart, std::min(i, hf.nx - 2), qt.blockCols);
+  const int r = bandOf(qt.rowStart, std::min(j, hf.ny - 2), qt.blockRows);
+  bi = i - qt.colStart[c];
+  bj = j - qt.rowStart[r];
+  return qt.blockIndex(c, r);
+}
+
+// The kind of cell of `level` that block-relative sample (bi, bj) lies in.
+Cause switchCell(const gmm::Quadtree& qt, int block, int level, int bi, int bj)
+{
+  const int step = 1 << level;
+  const int cols = std::max((qt.blockWidth(block) + step - 1) / step, 1);
+  const int rows = std::max((qt.blockHeight(block) + step - 1) / step, 1);
+  const int ci = std::min(bi / step, cols - 1), cj = std::min(bj / step, rows - 1);
+  const bool southEast = ci == cols - 1 && cj == 0, northWest = ci == 0 && cj == rows - 1;
+  if (southEast || northWest)
+  {
+    return SwitchCorner;
+  }
+  return ci == 0 || cj == 0 || ci == cols - 1 || cj == rows - 1 ? SwitchRing : SwitchInner;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const double tau = argOr(argc, argv, "--tau", 2.0);
+  const double range = argOr(argc, argv, "--range", gmm::kDefaultMorphRange);
+  const int block = static_cast<int>(argOr(argc, argv, "--block", 32));
+  const int n = static_cast<int>(argOr(argc, argv, "--n", 1025));
+  const double stepBlocks = argOr(argc, argv, "--step", 0.04);
+  const int frames = static_cast<int>(argOr(argc, argv, "--frames", 120));
+  const double threshold = argOr(argc, argv, "--threshold", 0.3);
+  const bool merges = flag(argc, argv, "--merges");
+  if (!(tau >= 0.0) || block < 4 || n < 3 || frames < 2 || !(threshold > 0.0))
+  {
+    std::fprintf(stderr, "measure_pop_causes: bad arguments (see the file's header)\n");
+    return 2;
+  }
+  const bool morphing = range > 0.0;
+  gmm::Engine e;
+  const std::string err = e.setHeightfield(gmm::makeSyntheticTerrain(n, n, 30.0, 1), block, 0);
+  if (!err.empty())
+  {
+    std::fprintf(stderr, "measure_pop_causes: %s\n", err.c_str());
+    return 2;
+  }
+  e.setMorphRange(morphing ? range : 0.0);
+  e.setMergeOnPath(merges);
+  const gmm::Heightfield& hf = e.heightfield();
+  const gmm::Quadtree& qt = e.quadtree();
+  const double top = *std::max_element(hf.z.begin(), hf.z.end());
+  const double ext = (hf.nx - 1) * hf.dx, pitch = 20.0 * 3.14159265358979323846 / 180.0;
+
+  gmm::MorphCache cache;
+  std::vector<double> previousZ;
+  std::vector<int8_t> previousLevels;
+  CauseTally tally[CauseCount];
+  double worstPop = 0.0, meanOfFrameWorst = 0.0;
+  double triangles = 0.0;
+  for (int f = 0; f < frames; ++f)
+  {
+    gmm::View v;
+    v.eye = { 0.1 * ext + f * stepBlocks * block * hf.dx, 0.5 * (hf.ny - 1) * hf.dy, top + 250.0 };
+    v.forward = { std::cos(pitch), 0.0, -std::sin(pitch) };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 50.0;
+    v.viewportWidth = 1280;
+    v.viewportHeight = 720;
+    v.nearDistance = 1.0;
+    v.farDistance = 4.0 * ext;
+    e.update(v, tau);
+    if (!e.lastError().empty())
+    {
+      std::fprintf(stderr, "measure_pop_causes: frame %d: %s\n", f, e.lastError().c_str());
+      return 1;
+    }
+    triangles += static_cast<double>(e.stats().triangles) / frames;
+    std::vector<double> z;
+    if (morphing)
+    {
+      gmm::MorphFrame mf;
+      gmm::computeMorph(hf, qt, e.levels(), e.pixelFactors(), gmm::morphErrorBudget(e.stats(), tau), cache,
+        mf, e.morphRamp());
+      z = gmmtest::morphedHeights(e, mf);
+    }
+    else
+    {
+      z.assign(hf.z.begin(), hf.z.end());
+    }
+    const gmmtest::SurfaceSample surface = gmmtest::sampleSurface(hf, e.indices(), z.data());
+    const std::vector<int8_t>& levels = e.levels();
+    if (!previousZ.empty())
+    {
+      const gmmtest::MyCamera cam = gmmtest::makeCamera(v);
+      double frameWorst = 0.0;
+      bool seen[CauseCount] = {};
+      for (int j = 0; j < hf.ny; ++j)
+      {
+        for (int i = 0; i < hf.nx; ++i)
+        {
+          const std::size_t k = hf.index(i, j);
+          const double x = hf.worldX(i), y = hf.worldY(j);
+          double px, py, qx, qy;
+          if (std::isnan(surface.z[k]) || std::isnan(previousZ[k]) || !gmmtest::insideFrustum(cam, x, y, hf.z[k]) ||
+            gmmtest::project(cam, x, y, surface.z[k], px, py) < cam.nearD ||
+            gmmtest::project(cam, x, y, previousZ[k], qx, qy) < cam.nearD)
+          {
+            continue;
+          }
+          const double pop = std::hypot(px - qx, py - qy);
+          frameWorst = std::max(frameWorst, pop);
+          if (pop <= threshold)
+          {
+            continue;
+          }
+          int bi = 0, bj = 0;
+          const int b = blockOfSample(qt, hf, i, j, bi, bj);
+          const int before = previousLevels[b], now = levels[b];
+          Cause cause = Factor;
+          if (before < 0 || now < 0)
+          {
+            cause = Merge;
+          }
+          else if (before != now)
+          {
+            cause = switchCell(qt, b, std::max(before, now), bi, bj);
+          }
+          else
+          {
+            for (int nb : qt.blockNeighbours(b))
+            {
+              if (nb >= 0 && previousLevels[nb] != levels[nb])
+              {
+                cause = Neighbour;
+              }
+            }
+          }
+          ++tally[cause].samples;
+          tally[cause].worst = std::max(tally[cause].worst, pop);
+          seen[cause] = true;
+        }
+      }
+      for (int c = 0; c < CauseCount; ++c)
+      {
+        tally[c].frames += seen[c] ? 1 : 0;
+      }
+      worstPop = std::max(worstPop, frameWorst);
+      meanOfFrameWorst += frameWorst / (frames - 1);
+    }
+    previousZ = surface.z;
+    previousLevels = levels;
+  }
+  char mode[64] = "no geomorphing";
+  if (morphing)
+  {
+    std::snprintf(mode, sizeof mode, "geomorphing range %g%s", range, merges ? ", merges on the path" : "");
+  }
+  std::printf("fractal %d^2, block %d, tau %g, %s, %d frames of %g blocks: worst pop %.3f px, mean of "
+              "frames' worst %.3f px, %.0f triangles a frame\n",
+    n, block, tau, mode, frames, stepBlocks, worstPop, meanOfFrameWorst, triangles);
+  std::printf("samples moving more than %g px between frames, by cause:\n", threshold);
+  std::printf("| cause | samples | frames | worst px |\n|---|---|---|---|\n");
+  for (int c = 0; c < CauseCount; ++c)
+  {
+    std::printf("| %s | %ld | %d | %.3f |\n", kCauseNames[c], tally[c].samples, tally[c].frames, tally[c].worst);
+  }
+  return 0;
+}
