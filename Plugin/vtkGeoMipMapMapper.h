@@ -299,9 +299,12 @@ public:
    * its morph factor never rises faster than that from one frame to the next, so that no
    * frame pops where two levels' errors are close or a neighbour's switch frees a block.
    * Larger is smoother and draws more triangles (blocks stay finer than PixelError needs
-   * near their switches: +13 % on the Puget Sound flight, +55 % on a rough fractal and
-   * +153 % on a wide 4097^2 orbit at tau 1 at the default; about +15 % at 2;
-   * Documentation/benchmarks.md). 1 or less selects the coarsest
+   * while they glide: on low flights at block 64, +13 % over Puget Sound and +55 % over a
+   * rough fractal; on geomipmap-bench's wide 4097^2 orbit at tau 1, +308 % at the default
+   * and +52 % at 2, since where a block's errors grow by less than this factor a level its
+   * lag grows with distance; Documentation/benchmarks-core.md, session 26). A lower range
+   * pops more: the levels do not nest, and only switching far below the budget hides it.
+   * 1 or less selects the coarsest
    * levels within PixelError and morphs each block as far as its certificate allows. The
    * certificate holds at any range.
    */
