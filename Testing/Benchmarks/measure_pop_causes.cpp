@@ -143,7 +143,6 @@ int main(int argc, char** argv)
   const gmm::Heightfield& hf = e.heightfield();
   const gmm::Quadtree& qt = e.quadtree();
   const double top = *std::max_element(hf.z.begin(), hf.z.end());
-  const double ext = (hf.nx - 1) * hf.dx, pitch = 20.0 * 3.14159265358979323846 / 180.0;
 
   gmm::MorphCache cache;
   std::vector<double> previousZ;
@@ -153,15 +152,7 @@ int main(int argc, char** argv)
   double triangles = 0.0;
   for (int f = 0; f < frames; ++f)
   {
-    gmm::View v;
-    v.eye = { 0.1 * ext + f * stepBlocks * block * hf.dx, 0.5 * (hf.ny - 1) * hf.dy, top + 250.0 };
-    v.forward = { std::cos(pitch), 0.0, -std::sin(pitch) };
-    v.up = { 0, 0, 1 };
-    v.fovYDegrees = 50.0;
-    v.viewportWidth = 1280;
-    v.viewportHeight = 720;
-    v.nearDistance = 1.0;
-    v.farDistance = 4.0 * ext;
+    const gmm::View v = gmmtest::poppingFlightView(hf, top, block, stepBlocks, f);
     e.update(v, tau);
     if (!e.lastError().empty())
     {

@@ -350,20 +350,13 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
   e.setMergeOnPath(mergeOnPath);
   const gmm::Heightfield& hf = e.heightfield();
   const double top = *std::max_element(hf.z.begin(), hf.z.end());
-  const double ext = (hf.nx - 1) * hf.dx, pitch = 20.0 * 3.14159265358979323846 / 180.0;
   gmm::MorphCache cache;
   FlightOutcome out;
   std::vector<double> prev;
   double startTau = 0.0;
   for (int f = 0; f < frames; ++f)
   {
-    gmm::View v;
-    v.eye = { 0.1 * ext + f * stepBlocks * block * hf.dx, 0.5 * (hf.ny - 1) * hf.dy, top + 250.0 };
-    v.forward = { std::cos(pitch), 0.0, -std::sin(pitch) };
-    v.up = { 0, 0, 1 };
-    v.fovYDegrees = 50.0;
-    v.nearDistance = 1.0;
-    v.farDistance = 4.0 * ext;
+    const gmm::View v = poppingFlightView(hf, top, block, stepBlocks, f);
     if (budget > 0)
     {
       e.update(v, tau, budget, startTau);
