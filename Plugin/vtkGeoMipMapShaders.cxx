@@ -215,7 +215,7 @@ const char* const kDrape =
 
 // Geomorphing in the vertex shader, mirroring gmm::morphedHeight (Morph.cpp) line by line:
 // the block of sample (i, j) from its column's and row's entries in gmmSampleBands (the
-// band search of Morph.cpp's bandOf, tabulated: vtkGeoMipMapMorphTexture.h), then the edge
+// band search of Quadtree.h's bandOfSample, tabulated: vtkGeoMipMapMorphTexture.h), then the edge
 // or the block it lies on, its target level and factor, and the target: the edge polyline
 // at that level, or the block's cell at that level split as Tessellate splits it.
 const char* const kMorph =

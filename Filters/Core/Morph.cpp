@@ -12,15 +12,6 @@ namespace gmm
 namespace
 {
 
-// Band index of sample s in band starts `start` (size bands + 1): the band whose first
-// sample is the largest start <= s (the last band for the very last sample).
-int bandOf(const std::vector<int>& start, int s)
-{
-  const int bands = static_cast<int>(start.size()) - 1;
-  const int k = static_cast<int>(std::upper_bound(start.begin(), start.end(), s) - start.begin()) - 1;
-  return std::min(std::max(k, 0), bands - 1);
-}
-
 // Height of the polyline through the samples of [first, last] at `level` (edgeSamples), at
 // sample s on that line; `at(k)` gives the height of sample k along the line.
 template <typename At>
@@ -530,7 +521,7 @@ double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, i
 double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const MorphFrame& frame, int i, int j, double* factorOut)
 {
-  const int c = bandOf(qt.colStart, i), r = bandOf(qt.rowStart, j);
+  const int c = bandOfSample(qt.colStart, i), r = bandOfSample(qt.rowStart, j);
   const int b = qt.blockIndex(c, r);
   const std::array<const MorphEdge*, 4> edges = blockEdges(qt, frame, b);
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];

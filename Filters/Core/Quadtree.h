@@ -13,6 +13,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -204,6 +205,16 @@ std::string validateBlockSize(int maxBlockQuads);
 // the quads between are halved as above; a collar that would leave fewer than
 // kMinBlockQuads quads between is dropped.
 std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0);
+
+// Band index of sample s in band starts `start` (splitBands' form, bands + 1 entries): the
+// band whose first sample is the largest start <= s, clamped into [0, bands) (so the very
+// last sample falls in the last band).
+inline int bandOfSample(const std::vector<int>& start, int s)
+{
+  const int bands = static_cast<int>(start.size()) - 1;
+  const int k = static_cast<int>(std::upper_bound(start.begin(), start.end(), s) - start.begin()) - 1;
+  return std::min(std::max(k, 0), bands - 1);
+}
 
 // Nodata collars: the width, in quads, of the nodata that lines each border of the DEM.
 // A raster reprojected onto the engine's grid has wedges of nodata along its borders (the

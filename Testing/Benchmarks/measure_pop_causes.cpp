@@ -84,15 +84,11 @@ struct CauseTally
   double worst = 0.0;
 };
 
-// The block whose cell holds sample (i, j): the cell to its north-east, clamped to the grid.
-int blockOfSample(const gmm::Quadtree& qt, const gmm::Heightfield& hf, int i, int j, int& bi, int& bj)
+// The block whose cell holds sample (i, j) (bandOfSample: the cell to its north-east, the
+// last band for the last sample), and the sample's position in it.
+int blockOfSample(const gmm::Quadtree& qt, int i, int j, int& bi, int& bj)
 {
-  const auto bandOf = [](const std::vector<int>& start, int s, int bands) {
-    const int b = static_cast<int>(std::upper_bound(start.begin(), start.end(), s) - start.begin()) - 1;
-    return std::min(std::max(b, 0), bands - 1);
-  };
-  const int c = bandOf(qt.colStart, std::min(i, hf.nx - 2), qt.blockCols);
-  const int r = bandOf(qt.rowStart, std::min(j, hf.ny - 2), qt.blockRows);
+  const int c = gmm::bandOfSample(qt.colStart, i), r = gmm::bandOfSample(qt.rowStart, j);
   bi = i - qt.colStart[c];
   bj = j - qt.rowStart[r];
   return qt.blockIndex(c, r);
@@ -199,7 +195,7 @@ int main(int argc, char** argv)
             continue;
           }
           int bi = 0, bj = 0;
-          const int b = blockOfSample(qt, hf, i, j, bi, bj);
+          const int b = blockOfSample(qt, i, j, bi, bj);
           const int before = previousLevels[b], now = levels[b];
           Cause cause = Factor;
           if (before < 0 || now < 0)

@@ -114,8 +114,7 @@ def add_terrain_options(parser, dem_positional=False):
 def add_rendering_options(parser, size=(1280, 720)):
     """The rendering options: --tau, --block-size, --size, --color, --texture,
     --texture-size, --no-lighting, --vertex-normals, --no-geomorphing (read by
-    scene.Scene.from_args); returns
-    the group so that a tool can add its own."""
+    scene.Scene.from_args); returns the group so that a tool can add its own."""
     g = parser.add_argument_group("rendering")
     g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
                    help="pixel error bound (default 1)")
