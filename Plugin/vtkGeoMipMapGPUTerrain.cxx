@@ -9,6 +9,7 @@
 #include "vtk_glew.h"
 
 #include "Heightfield.h"
+#include "VertexPitch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -248,7 +249,9 @@ void vtkGeoMipMapGPUTerrain::SetUniforms(vtkShaderProgram* p, const gmm::Heightf
     p->SetUniform4f("gmmDrapeMap", map);
   }
   set2i("gmmGridSize", hf.nx, hf.ny);
-  setf("gmmInvGridX", 1.0 / hf.nx);
+  const uint32_t pitch = gmm::drawPitch(hf.nx, hf.ny);
+  seti("gmmVertexPitch", static_cast<int>(pitch));
+  setf("gmmInvPitch", 1.0 / pitch);
   set2i("gmmTileSize", this->Layout.tileW, this->Layout.tileH);
   set2f("gmmTileScale", 1.0 / this->Layout.tileW, 1.0 / this->Layout.tileH);
   seti("gmmTilesX", this->Layout.tilesX);

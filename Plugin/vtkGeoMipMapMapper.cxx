@@ -45,6 +45,7 @@
 #include "Engine.h"
 #include "Morph.h"
 #include "RayCast.h"
+#include "VertexPitch.h"
 
 #include <algorithm>
 #include <atomic>
@@ -108,6 +109,9 @@ struct vtkGeoMipMapMapper::Internals
   std::vector<const void*> Offsets;
 
   std::vector<unsigned int> Lines; // scratch for wireframe edges
+  // The indices as uploaded: the engine's sample indices as drawing ids (gmm::toDrawIds),
+  // whole or one dirty range at a time.
+  std::vector<unsigned int> DrawIds;
   size_t IndexBytes = 0;
   // The index buffer holds the engine's arena as of this version (0: it does not).
   uint64_t MirroredArena = 0;
@@ -564,6 +568,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   this->LastMorphUploadBytes = 0;
   this->LastRenderTime = this->LastAllocatedRenderTime = 0.0;
   this->LastFragmentsPassed = 0;
+  this->LastVertexInvocations = this->CountFragments && !GLEW_ARB_pipeline_statistics_query ? -1 : 0;
   // The budget (and whether this frame is timed) first: a timed frame starts with the GPU
   // idle, so that it is charged for its own work only.
   bool interactive = false;
@@ -862,6 +867,8 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
   // The arena (slots, unused space = restart index) needs primitive restart; without it,
   // the plain concatenated triangles are uploaded whole.
   const std::vector<uint32_t>& tris = in.PrimitiveRestart ? arena.indices() : in.Engine.indices();
+  const gmm::Heightfield& hf = in.Engine.heightfield();
+  const uint32_t pitch = gmm::drawPitch(hf.nx, hf.ny); // the vertex shader decodes ids with it
   vtkTypeInt64 bytes = 0;
   if (in.Engine.stats().triangles == 0)
   {
@@ -886,6 +893,7 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
       e[4] = plain[t + 2];
       e[5] = plain[t];
     }
+    gmm::toDrawIds(up.data(), up.size(), hf.nx, pitch, up.data());
     ibo->Upload(up, vtkOpenGLBufferObject::ElementArrayBuffer);
     ibo->IndexCount = up.size();
     bytes = static_cast<vtkTypeInt64>(up.size() * sizeof(unsigned int));
@@ -895,7 +903,9 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
     in.MirroredArena + 1 != arena.version() || ibo->IndexCount != tris.size())
   {
     // Triangles (GL_TRIANGLES) or points (GL_POINTS draws every referenced vertex).
-    ibo->Upload(tris, vtkOpenGLBufferObject::ElementArrayBuffer);
+    in.DrawIds.resize(tris.size());
+    gmm::toDrawIds(tris.data(), tris.size(), hf.nx, pitch, in.DrawIds.data());
+    ibo->Upload(in.DrawIds, vtkOpenGLBufferObject::ElementArrayBuffer);
     ibo->IndexCount = tris.size();
     bytes = static_cast<vtkTypeInt64>(tris.size() * sizeof(unsigned int));
     in.MirroredArena = in.PrimitiveRestart ? arena.version() : 0;
@@ -907,8 +917,10 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
     for (const gmm::IndexArena::Range& r : arena.dirtyRanges())
     {
       const GLsizeiptr n = static_cast<GLsizeiptr>((r.end - r.begin) * sizeof(unsigned int));
+      in.DrawIds.resize(r.end - r.begin);
+      gmm::toDrawIds(tris.data() + r.begin, r.end - r.begin, hf.nx, pitch, in.DrawIds.data());
       glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(r.begin * sizeof(unsigned int)),
-        n, tris.data() + r.begin);
+        n, in.DrawIds.data());
       bytes += n;
     }
     ibo->Release();
@@ -924,11 +936,16 @@ void vtkGeoMipMapMapper::DrawTriangles(unsigned int mode, std::size_t indexCount
 {
   Internals& in = *this->Internal;
   const gmm::IndexArena& arena = in.Engine.indexArena();
-  GLuint query = 0;
+  GLuint query = 0, vertexQuery = 0;
   if (this->CountFragments)
   {
     glGenQueries(1, &query);
     glBeginQuery(GL_SAMPLES_PASSED, query);
+    if (GLEW_ARB_pipeline_statistics_query)
+    {
+      glGenQueries(1, &vertexQuery);
+      glBeginQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB, vertexQuery);
+    }
   }
   // Sorted only when the buffer mirrors the arena's slots (not for wireframe lines or the
   // plain list drawn without primitive restart).
@@ -953,6 +970,14 @@ void vtkGeoMipMapMapper::DrawTriangles(unsigned int mode, std::size_t indexCount
   else
   {
     glDrawElements(mode, static_cast<GLsizei>(indexCount), GL_UNSIGNED_INT, nullptr);
+  }
+  if (vertexQuery)
+  {
+    glEndQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB);
+    GLuint64 runs = 0;
+    glGetQueryObjectui64v(vertexQuery, GL_QUERY_RESULT, &runs);
+    glDeleteQueries(1, &vertexQuery);
+    this->LastVertexInvocations += static_cast<vtkTypeInt64>(runs);
   }
   if (query)
   {

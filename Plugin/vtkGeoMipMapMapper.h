@@ -407,7 +407,9 @@ public:
   /**
    * Instrumentation: when on, each draw counts the samples that pass the depth test
    * (GL_SAMPLES_PASSED; waits for the result), i.e. the fragments shaded when the
-   * fragment shader runs after an early depth test. For measuring FrontToBack.
+   * fragment shader runs after an early depth test, for measuring FrontToBack; and the
+   * vertex shader's runs (GL_VERTEX_SHADER_INVOCATIONS; -1 where the driver lacks
+   * ARB_pipeline_statistics_query), for measuring vertex reuse (gmm::drawPitch).
    * A heap corruption seen once with counting and FrontToBack together (Debian 12's
    * llvmpipe, before merged nodes joined the draw order) no longer reproduces: 120 frames
    * of Puget Sound in both orders run clean (Documentation/benchmarks.md, issue #14). Its
@@ -416,6 +418,7 @@ public:
   vtkSetMacro(CountFragments, bool);
   vtkGetMacro(CountFragments, bool);
   vtkGetMacro(LastFragmentsPassed, vtkTypeInt64);
+  vtkGetMacro(LastVertexInvocations, vtkTypeInt64);
   ///@}
 
   ///@{
@@ -589,6 +592,7 @@ protected:
   double LastAllocatedRenderTime = 0.0;
   double LastRenderTime = 0.0;
   vtkTypeInt64 LastFragmentsPassed = 0;
+  vtkTypeInt64 LastVertexInvocations = 0;
   vtkMTimeType IndicesOnlyMTime = 0;
   bool IndicesDirty = true;
 

@@ -394,24 +394,26 @@ void InsertTerrainCode(std::map<vtkShader::Type, vtkShader*>& shaders, const Opt
   vtkShaderProgram::Substitute(vs, "//GMM::Dec",
     FetchFunctions(o) +
       "uniform ivec2 gmmAnchor;      // sample at the model-coordinate origin\n"
-      "uniform float gmmInvGridX;    // 1 / nx\n"
+      "uniform int gmmVertexPitch;   // vertex id = j * pitch + i (gmm::drawPitch)\n"
+      "uniform float gmmInvPitch;    // 1 / pitch\n"
       "uniform float gmmHeightRef;   // stored height at the model-coordinate origin\n"
       "out vec2 gmmGridVSOutput;\n" +
       (o.Color == Options::MapHeights ? "out float gmmHeightVSOutput;\n" : "") +
       (vertexNormals ? std::string(kValid) + kSlopeRule + kNormalOfSlope + kVertexNormal : std::string()) +
       (o.Morph ? kMorph : ""));
-  // Sample (i, j) of vertex id j * nx + i without an integer division (scalarised, hence
-  // slow, on software rasterisers): a float estimate of j (relative error 2^-24), refined
-  // once from its remainder (now small enough to be exact in float), then corrected by one;
-  // exact for every id < 2^32 whatever nx (checked against integer division in numpy for
-  // shapes from 2 x 2^31 to 2^31 x 3).
+  // Sample (i, j) of vertex id j * pitch + i (gmm::drawPitch: a little over nx, so that
+  // a software renderer shades shared vertices once) without an integer division
+  // (scalarised, hence slow, on software rasterisers): a float estimate of j (relative error
+  // 2^-24), refined once from its remainder (now small enough to be exact in float), then
+  // corrected by one; exact for every id < 2^32 whatever the pitch (checked against integer
+  // division in numpy for shapes from 2 x 2^31 to 2^31 x 3).
   std::string begin = "  uint gmmId = uint(gl_VertexID);\n"
-                      "  int gmmJ = int(float(gmmId) * gmmInvGridX);\n"
-                      "  int gmmI = int(gmmId - uint(gmmJ) * uint(gmmGridSize.x));\n"
-                      "  gmmJ += int(floor(float(gmmI) * gmmInvGridX));\n"
-                      "  gmmI = int(gmmId - uint(gmmJ) * uint(gmmGridSize.x));\n"
-                      "  if (gmmI < 0) { gmmJ -= 1; gmmI += gmmGridSize.x; }\n"
-                      "  else if (gmmI >= gmmGridSize.x) { gmmJ += 1; gmmI -= gmmGridSize.x; }\n"
+                      "  int gmmJ = int(float(gmmId) * gmmInvPitch);\n"
+                      "  int gmmI = int(gmmId - uint(gmmJ) * uint(gmmVertexPitch));\n"
+                      "  gmmJ += int(floor(float(gmmI) * gmmInvPitch));\n"
+                      "  gmmI = int(gmmId - uint(gmmJ) * uint(gmmVertexPitch));\n"
+                      "  if (gmmI < 0) { gmmJ -= 1; gmmI += gmmVertexPitch; }\n"
+                      "  else if (gmmI >= gmmVertexPitch) { gmmJ += 1; gmmI -= gmmVertexPitch; }\n"
                       "  ivec2 gmmIJ = ivec2(gmmI, gmmJ);\n"
                       "  float gmmH = gmmHeight(gmmIJ);\n" +
     std::string(vertexNormals ? "  normalMC = gmmVertexNormal(gmmIJ, gmmH);\n" : "") +
