@@ -26,41 +26,18 @@
 #include "SyntheticTerrain.h"
 #include "../Core/CoreTestUtil.h"
 #include "../Core/MorphTestUtil.h"
+#include "ToolArguments.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
 namespace
 {
-
-double argOr(int argc, char** argv, const char* name, double fallback)
-{
-  for (int k = 1; k + 1 < argc; ++k)
-  {
-    if (std::strcmp(argv[k], name) == 0)
-    {
-      return std::atof(argv[k + 1]);
-    }
-  }
-  return fallback;
-}
-
-bool flag(int argc, char** argv, const char* name)
-{
-  for (int k = 1; k < argc; ++k)
-  {
-    if (std::strcmp(argv[k], name) == 0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
+using gmmbench::argOr;
+using gmmbench::flag;
 
 enum Cause
 {

@@ -26,12 +26,11 @@
 #include "SelectLevels.h"
 #include "SyntheticTerrain.h"
 #include "../Core/MorphTestUtil.h"
+#include "ToolArguments.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
@@ -39,18 +38,7 @@
 
 namespace
 {
-
-double argOr(int argc, char** argv, const char* name, double fallback)
-{
-  for (int k = 1; k + 1 < argc; ++k)
-  {
-    if (std::strcmp(argv[k], name) == 0)
-    {
-      return std::atof(argv[k + 1]);
-    }
-  }
-  return fallback;
-}
+using gmmbench::argOr;
 
 // The drawn surface of `block` with `config` at every sample of its rectangle (row by row
 // from its first sample; NaN where no triangle covers one), each vertex at vertexHeight(i, j).
