@@ -138,7 +138,7 @@ int vtkGeoMipMapFilter::RequestData(
   {
     gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
       in.Engine.pixelFactors(), gmm::morphErrorBudget(*stats, this->PixelError), in.MorphCache, in.Morph,
-      in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs());
+      in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs(), &in.Engine.errorTable());
   }
   else if (!in.Engine.empty())
   {

@@ -692,7 +692,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
       const auto start = Clock::now();
       gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(),
         gmm::morphErrorBudget(in.Engine.stats(), this->PixelError), in.MorphCache, in.Morph,
-        in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs());
+        in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs(), &in.Engine.errorTable());
       this->LastUpdateTime += this->LastFrameFrozen ? 0.0 : SecondsSince(start);
     }
     const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);

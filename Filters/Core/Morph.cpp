@@ -244,7 +244,8 @@ void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
 
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
-  const MorphRamp* ramp, const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs)
+  const MorphRamp* ramp, const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs,
+  const ErrorTable* table)
 {
   resetMorph(qt, out);
   const int blocks = qt.blockCount();
@@ -357,7 +358,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       chainAt[k] = chainIndex(qt, drawn[k], levels[drawn[k]]);
     }
   }
-  refreshPartErrors(hf, qt, out, cache);
+  refreshPartErrors(hf, qt, out, cache, table);
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];

@@ -13,6 +13,7 @@
 // its bound is (1 - t_b) E_0 + t_b E_1. These are exact maxima over samples, not estimates.
 #pragma once
 
+#include "ErrorTable.h"
 #include "Heightfield.h"
 #include "Quadtree.h"
 #include "Tessellate.h"
@@ -33,6 +34,9 @@ struct PartErrors
   double side[4][4] = {};
   bool innerFrozen = false;     // nodata involved: the part must not morph
   std::array<bool, 4> sideFrozen{ false, false, false, false };
+  // The parts (masks below) whose corners are upper bounds taken from the error table
+  // (tablePartBounds), not measured: valid while they are within the block's budget.
+  unsigned bounded = 0;
 };
 
 // Bound of a strip at factors (te, tb): bilinear in the four corner errors. (Inline:
@@ -98,6 +102,27 @@ constexpr unsigned kAllMorphParts = 0x1f;
 void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts,
   PartErrors& errors, MorphPartScratch& scratch);
+
+// Upper bounds of the corner errors of `block`'s parts from its error table, where they
+// prove the part within `budget` at every factor, so that it need not be measured
+// (computeMorph with a table: the largest certified factors are then the same, 1 capped by
+// the path and the rise limit, as with the measured errors; only the bound reported for the
+// frame is looser). A part's drawn surface moved by factors t moves by at most
+// t_ring D_ring + t_edge D_edge at any sample (a sample's displacement interpolates its
+// triangle's vertices'), so its corners are at most E + D: E its error as drawn (the
+// block's own error at its level with its own edges, or the strip table's for a coarser
+// edge), D_ring the block's exact error at its target level with its own edges (a ring
+// vertex goes to that surface, blockVertexTarget), D_edge the strip table's error of the
+// side at the edge's target level (which covers that polyline's samples). Blocks with a side
+// that may be drawn at full resolution are left out (their targets do not follow that side).
+// Returns the parts of `parts` whose bounds are all <= budget, written into `errors` with
+// their bits set in errors.bounded; the other parts are left as they are.
+unsigned tablePartBounds(const ErrorTable& table, const Quadtree& qt, int block, const BlockConfig& config,
+  int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget, PartErrors& errors);
+
+// The parts in errors.bounded whose largest corner exceeds `budget`: bounds that no longer
+// prove their part within a smaller budget, so it must be measured.
+unsigned boundedPartsOver(const PartErrors& errors, double budget);
 
 // Inner-grid part errors by block and level, kept while the heights are the same. They
 // depend on the block and its level alone (its target is the next valid level), so a block

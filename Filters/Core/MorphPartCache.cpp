@@ -27,7 +27,8 @@ std::array<int8_t, 10> keyOf(const BlockConfig& cfg, int target, const std::arra
 }
 } // namespace
 
-void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFrame& out, MorphCache& cache)
+void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFrame& out, MorphCache& cache,
+  const ErrorTable* table)
 {
   const std::vector<int>& drawn = out.blocks;
   std::vector<std::pair<std::size_t, unsigned>>& measures = cache.measures;
@@ -42,26 +43,39 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
     MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
     const BlockConfig& cfg = cache.configs[k];
     const std::array<int8_t, 10> key = keyOf(cfg, out.blockTarget[b], cache.edges[k]);
+    unsigned parts = 0;
     if (key == state.key)
     {
-      continue;
     }
-    if (key == state.previousKey)
+    else if (key == state.previousKey)
     {
       std::swap(state.key, state.previousKey); // part errors depend on the key only
       std::swap(state.errors, state.previousErrors);
-      continue;
     }
-    state.previousKey = state.key;
-    state.previousErrors = state.errors;
-    unsigned parts = changedMorphParts(state.key, key);
-    if ((parts & 1u) && cache.inner.take(qt, b, cfg.level, out.blockTarget[b], state.errors))
+    else
     {
-      parts &= ~1u;
+      state.previousKey = state.key;
+      state.previousErrors = state.errors;
+      parts = changedMorphParts(state.key, key);
+      if ((parts & 1u) && cache.inner.take(qt, b, cfg.level, out.blockTarget[b], state.errors))
+      {
+        parts &= ~1u;
+        state.errors.bounded &= ~1u;
+      }
+      state.key = key;
     }
-    state.key = key;
+    // Bounds kept from a frame with a larger budget may no longer prove their part.
+    const double budget = cache.budgets[k];
+    parts |= boundedPartsOver(state.errors, budget);
+    if (parts && table)
+    {
+      const std::array<MorphEdge*, 4>& edges = cache.edges[k];
+      parts &= ~tablePartBounds(*table, qt, b, cfg, out.blockTarget[b],
+        { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, parts, budget, state.errors);
+    }
     if (parts)
     {
+      state.errors.bounded &= ~parts; // measured below: exact
       measures.emplace_back(k, parts);
     }
   }

@@ -156,7 +156,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   if (mapperDefault)
   {
     gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 1.0, morphCache,
-      morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
+      morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
   }
   for (auto _ : state)
   {
@@ -166,7 +166,7 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
     if (mapperDefault)
     {
       gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 1.0, morphCache,
-        morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
+        morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
       benchmark::DoNotOptimize(morph.blockT.data());
     }
     else
@@ -227,13 +227,15 @@ void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::siz
   e.update(s.flight[0], 0.0, budgetOf(0), 0.0); // warm-up, as runFlight
   startTau = e.stats().budgetTau;
   gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(),
-    gmm::morphErrorBudget(e.stats(), 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
+    gmm::morphErrorBudget(e.stats(), 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(),
+    &e.errorTable());
   for (auto _ : state)
   {
     const auto t0 = std::chrono::steady_clock::now();
     const gmm::FrameStats& st = e.update(s.flight[frame % s.flight.size()], 0.0, budgetOf(frame), startTau);
     gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(),
-      gmm::morphErrorBudget(st, 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
+      gmm::morphErrorBudget(st, 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(),
+      &e.errorTable());
     benchmark::DoNotOptimize(morph.blockT.data());
     totalUs += seconds(t0) * 1e6;
     startTau = st.budgetTau;

@@ -92,7 +92,8 @@ int main(int argc, char** argv)
     if (mapper)
     {
       gmm::computeMorph(engine.heightfield(), engine.quadtree(), engine.levels(), engine.pixelFactors(),
-        gmm::morphErrorBudget(st, 1.0), cache, morph, engine.morphRamp(), &engine.drawnBlocks(), &engine.drawnConfigs());
+        gmm::morphErrorBudget(st, 1.0), cache, morph, engine.morphRamp(), &engine.drawnBlocks(), &engine.drawnConfigs(),
+        &engine.errorTable());
     }
     if (f == 0)
     {

@@ -138,7 +138,7 @@ int main(int argc, char** argv)
     {
       gmm::MorphFrame mf;
       gmm::computeMorph(hf, qt, e.levels(), e.pixelFactors(), gmm::morphErrorBudget(e.stats(), tau), cache,
-        mf, e.morphRamp());
+        mf, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
       z = gmmtest::morphedHeights(e, mf);
     }
     else

@@ -565,6 +565,103 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
   EXPECT_GE(compared, 60) << "too few frames drew anything";
 }
 
+TEST(MorphRamp, TableBoundsGiveTheMeasuredFactors)
+{
+  // With the error table, computeMorph takes table bounds for the parts they prove within
+  // budget instead of measuring them (tablePartBounds). Along a flight that jumps and
+  // changes tau (a smaller budget must send kept bounds back to measuring), every factor
+  // must equal the one from measured errors, each bound must be at least the measured
+  // corner (morphPartErrors, the rasterised surface), and the reported bound may only grow.
+  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 193, 30.0, 5, 900.0, 1);
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+  e.setMorphRange(gmm::kDefaultMorphRange);
+  const double ext = 256 * 30.0;
+  gmm::MorphCache tableCache, measuredCache;
+  gmm::MorphFrame withTable, measured;
+  gmm::MorphPartScratch scratch;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double x = 0.2 * ext, y = 0.3 * ext, heading = 0.3;
+  long boundedParts = 0, checkedCorners = 0, remeasured = 0;
+  for (int f = 0; f < 90; ++f)
+  {
+    if (f % 9 == 8)
+    {
+      x = u(rng) * ext;
+      y = u(rng) * 192 * 30.0;
+      heading = u(rng) * 6.283;
+    }
+    x += 40.0 * std::cos(heading);
+    y += 40.0 * std::sin(heading);
+    gmm::View v;
+    v.eye = { x, y, 1200.0 + 600.0 * u(rng) };
+    v.forward = { std::cos(heading) * 0.9, std::sin(heading) * 0.9, -0.44 };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 50.0;
+    v.nearDistance = 1.0;
+    v.farDistance = 4.0 * ext;
+    const double tau = f % 5 == 0 ? 4.0 : (f % 5 == 1 ? 0.5 : 1.0);
+    e.update(v, tau);
+    ASSERT_EQ(e.lastError(), "");
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, tableCache, withTable,
+      e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, measuredCache, measured,
+      e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs());
+    ASSERT_EQ(withTable.blockT, measured.blockT) << "frame " << f;
+    for (std::size_t k = 0; k < measured.vEdges.size(); ++k)
+    {
+      ASSERT_EQ(withTable.vEdges[k].t, measured.vEdges[k].t) << "frame " << f << " edge " << k;
+    }
+    for (std::size_t k = 0; k < measured.hEdges.size(); ++k)
+    {
+      ASSERT_EQ(withTable.hEdges[k].t, measured.hEdges[k].t) << "frame " << f << " edge " << k;
+    }
+    EXPECT_GE(withTable.maxBoundPixels, measured.maxBoundPixels) << "frame " << f;
+    EXPECT_LE(withTable.maxBoundPixels, tau * (1.0 + 1e-9)) << "frame " << f;
+    for (std::size_t k = 0; k < tableCache.drawnSlots.size(); ++k)
+    {
+      const int b = withTable.blocks[k];
+      if (withTable.blockTarget[b] < 0 || tableCache.budgets[k] < 0.0)
+      {
+        continue;
+      }
+      const gmm::PartErrors& kept = tableCache.slots[tableCache.drawnSlots[k]].errors;
+      remeasured += gmm::boundedPartsOver(kept, tableCache.budgets[k]) != 0;
+      if (!kept.bounded)
+      {
+        continue;
+      }
+      const std::array<gmm::MorphEdge*, 4>& edges = tableCache.edges[k];
+      const gmm::PartErrors exact = gmm::morphPartErrors(e.heightfield(), e.quadtree(), b, tableCache.configs[k],
+        withTable.blockTarget[b], { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, scratch);
+      if (kept.bounded & 1u)
+      {
+        ++boundedParts;
+        for (int c = 0; c < 2; ++c, ++checkedCorners)
+        {
+          ASSERT_GE(kept.inner[c], exact.inner[c] - 1e-9) << "frame " << f << " block " << b;
+        }
+      }
+      for (int side = 0; side < 4; ++side)
+      {
+        if (kept.bounded & (2u << side))
+        {
+          ++boundedParts;
+          for (int c = 0; c < 4; ++c, ++checkedCorners)
+          {
+            ASSERT_GE(kept.side[side][c], exact.side[side][c] - 1e-9) << "frame " << f << " block " << b;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(remeasured, 0) << "a kept bound over its budget was used";
+  EXPECT_GT(boundedParts, 50) << "the table bounded too few parts to test anything";
+  std::printf("%ld parts bounded by the table (%ld corners checked against measured ones)\n", boundedParts,
+    checkedCorners);
+}
+
 TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
 {
   // computeMorph keeps each drawn block's part errors for its key and for the key before
