@@ -95,6 +95,43 @@ std::vector<double> randomChain(Rng& rng)
   }
   return e;
 }
+
+// A flight over makeSyntheticTerrain(257, 193, 30 m) that jumps every 9th frame (another
+// part of the DEM, another direction, as a user's camera can), 40 m a frame between jumps,
+// 1 200 - 1 800 m up, looking ahead and down.
+class JumpingFlight
+{
+public:
+  explicit JumpingFlight(unsigned seed)
+    : rng_(seed)
+  {
+  }
+  gmm::View view(int frame)
+  {
+    const double ext = 256 * 30.0;
+    if (frame % 9 == 8)
+    {
+      x_ = u_(rng_) * ext;
+      y_ = u_(rng_) * 192 * 30.0;
+      heading_ = u_(rng_) * 6.283;
+    }
+    x_ += 40.0 * std::cos(heading_);
+    y_ += 40.0 * std::sin(heading_);
+    gmm::View v;
+    v.eye = { x_, y_, 1200.0 + 600.0 * u_(rng_) };
+    v.forward = { std::cos(heading_) * 0.9, std::sin(heading_) * 0.9, -0.44 };
+    v.up = { 0, 0, 1 };
+    v.fovYDegrees = 50.0;
+    v.nearDistance = 1.0;
+    v.farDistance = 4.0 * ext;
+    return v;
+  }
+
+private:
+  std::mt19937 rng_;
+  std::uniform_real_distribution<double> u_{ 0.0, 1.0 };
+  double x_ = 0.2 * 256 * 30.0, y_ = 0.3 * 256 * 30.0, heading_ = 0.3;
+};
 } // namespace
 
 TEST(MorphRamp, PathByHand)
@@ -508,30 +545,13 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
   e.setMorphRange(gmm::kDefaultMorphRange);
-  const double ext = 256 * 30.0;
   gmm::MorphCache reusedCache, freshCache;
   gmm::MorphFrame reused;
-  std::mt19937 rng(17);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  double x = 0.2 * ext, y = 0.3 * ext, heading = 0.3;
+  JumpingFlight flight(17);
   int compared = 0;
   for (int f = 0; f < 90; ++f)
   {
-    if (f % 9 == 8)
-    {
-      x = u(rng) * ext; // a jump: another part of the DEM, another direction
-      y = u(rng) * 192 * 30.0;
-      heading = u(rng) * 6.283;
-    }
-    x += 40.0 * std::cos(heading);
-    y += 40.0 * std::sin(heading);
-    gmm::View v;
-    v.eye = { x, y, 1200.0 + 600.0 * u(rng) };
-    v.forward = { std::cos(heading) * 0.9, std::sin(heading) * 0.9, -0.44 };
-    v.up = { 0, 0, 1 };
-    v.fovYDegrees = 50.0;
-    v.nearDistance = 1.0;
-    v.farDistance = 4.0 * ext;
+    const gmm::View v = flight.view(f);
     const double tau = f % 13 == 0 ? 4.0 : 1.0;
     e.update(v, tau);
     ASSERT_EQ(e.lastError(), "");
@@ -576,31 +596,14 @@ TEST(MorphRamp, TableBoundsGiveTheMeasuredFactors)
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
   e.setMorphRange(gmm::kDefaultMorphRange);
-  const double ext = 256 * 30.0;
   gmm::MorphCache tableCache, measuredCache;
   gmm::MorphFrame withTable, measured;
   gmm::MorphPartScratch scratch;
-  std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  double x = 0.2 * ext, y = 0.3 * ext, heading = 0.3;
+  JumpingFlight flight(23);
   long boundedParts = 0, checkedCorners = 0, remeasured = 0;
   for (int f = 0; f < 90; ++f)
   {
-    if (f % 9 == 8)
-    {
-      x = u(rng) * ext;
-      y = u(rng) * 192 * 30.0;
-      heading = u(rng) * 6.283;
-    }
-    x += 40.0 * std::cos(heading);
-    y += 40.0 * std::sin(heading);
-    gmm::View v;
-    v.eye = { x, y, 1200.0 + 600.0 * u(rng) };
-    v.forward = { std::cos(heading) * 0.9, std::sin(heading) * 0.9, -0.44 };
-    v.up = { 0, 0, 1 };
-    v.fovYDegrees = 50.0;
-    v.nearDistance = 1.0;
-    v.farDistance = 4.0 * ext;
+    const gmm::View v = flight.view(f);
     const double tau = f % 5 == 0 ? 4.0 : (f % 5 == 1 ? 0.5 : 1.0);
     e.update(v, tau);
     ASSERT_EQ(e.lastError(), "");
