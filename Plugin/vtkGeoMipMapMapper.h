@@ -281,8 +281,10 @@ public:
    * coarser level drops toward that level's surface, by a per-block factor that grows as
    * the block nears its switch, so that level changes do not pop; vertices on a shared
    * edge follow one per-edge factor, so no crack opens. The factors keep the certificate:
-   * the morphed surface is within PixelError (MaximumScreenSpaceError is then its bound),
-   * or in a frame drawn within a triangle budget, within that frame's certified error.
+   * the morphed surface is within PixelError (MaximumScreenSpaceError is then its bound,
+   * from error-table bounds for the blocks whose budget those already prove, so it may lie
+   * above the measured error by more than without geomorphing), or in a frame drawn within
+   * a triangle budget, within that frame's certified error.
    * Only heights move (x, y stay), so draped images and shading do not swim. Per frame a
    * few bytes per block are uploaded; nothing per vertex. vtkGeoMipMapFilter with the same
    * setting outputs the same positions. See Documentation/design.md, "Geomorphing".
