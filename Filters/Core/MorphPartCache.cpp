@@ -25,6 +25,11 @@ std::array<int8_t, 10> keyOf(const BlockConfig& cfg, int target, const std::arra
     static_cast<int8_t>(cfg.edgeLevel[3]), static_cast<int8_t>(target), edges[0]->target,
     edges[1]->target, edges[2]->target, edges[3]->target };
 }
+// The targets its four edges move toward (-1: not moving), as the part errors take them.
+std::array<int, 4> edgeTargetsOf(const std::array<MorphEdge*, 4>& edges)
+{
+  return { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
+}
 } // namespace
 
 void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFrame& out, MorphCache& cache,
@@ -44,15 +49,12 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
     const BlockConfig& cfg = cache.configs[k];
     const std::array<int8_t, 10> key = keyOf(cfg, out.blockTarget[b], cache.edges[k]);
     unsigned parts = 0;
-    if (key == state.key)
-    {
-    }
-    else if (key == state.previousKey)
+    if (key != state.key && key == state.previousKey)
     {
       std::swap(state.key, state.previousKey); // part errors depend on the key only
       std::swap(state.errors, state.previousErrors);
     }
-    else
+    else if (key != state.key)
     {
       state.previousKey = state.key;
       state.previousErrors = state.errors;
@@ -69,9 +71,8 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
     parts |= boundedPartsOver(state.errors, budget);
     if (parts && table)
     {
-      const std::array<MorphEdge*, 4>& edges = cache.edges[k];
-      parts &= ~tablePartBounds(*table, qt, b, cfg, out.blockTarget[b],
-        { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, parts, budget, state.errors);
+      parts &= ~tablePartBounds(*table, qt, b, cfg, out.blockTarget[b], edgeTargetsOf(cache.edges[k]), parts,
+        budget, state.errors);
     }
     if (parts)
     {
@@ -84,10 +85,7 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
   auto measure = [&](const std::pair<std::size_t, unsigned>& m, MorphPartScratch& scratch) {
     const std::size_t k = m.first;
     const int b = drawn[k];
-    const std::array<MorphEdge*, 4>& edges = cache.edges[k];
-    const std::array<int, 4> edgeTarget{ edges[0]->target, edges[1]->target, edges[2]->target,
-      edges[3]->target };
-    updateMorphPartErrors(hf, qt, b, cache.configs[k], out.blockTarget[b], edgeTarget, m.second,
+    updateMorphPartErrors(hf, qt, b, cache.configs[k], out.blockTarget[b], edgeTargetsOf(cache.edges[k]), m.second,
       cache.slots[cache.drawnSlots[k]].errors, scratch);
   };
   if (measures.size() < kParallelMeasures)

@@ -2,6 +2,8 @@
 
 #include "IndexArena.h"
 
+#include <algorithm>
+
 namespace gmm
 {
 
@@ -18,13 +20,7 @@ void toDrawIds(const uint32_t* in, std::size_t count, int nx, uint32_t pitch, ui
   const uint32_t pad = pitch - static_cast<uint32_t>(nx);
   if (pad == 0)
   {
-    if (in != out)
-    {
-      for (std::size_t k = 0; k < count; ++k)
-      {
-        out[k] = in[k];
-      }
-    }
+    std::copy(in, in + count, out); // a no-op in place
     return;
   }
   if (nx == 1) // j = v (and m below would be 2^64)

@@ -15,6 +15,7 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkRenderer
 
 import geomipmap
 import refscene
+from gmmtestutil import lod_mesh
 
 W, H = 480, 320
 TAU, BLOCK = 1.0, 32
@@ -51,15 +52,9 @@ def frame(nx, ny):
     gpu = refscene.depth(win)
     # The same frame from the filter (a fresh filter reproduces a mapper's first frame,
     # geomorphing included), drawn by VTK's own mapper from its points.
-    f = geomipmap.vtkGeoMipMapFilter()
-    f.SetInputData(image)
-    f.SetViewportSize(W, H)
-    f.SetPixelError(TAU)
-    f.SetBlockSize(BLOCK)
-    f.SetCamera(cam)
-    f.Update()
+    mesh = lod_mesh(image, cam, (W, H), TAU, BLOCK)
     ren.RemoveAllViewProps()
-    ren.AddActor(refscene.stock_actor(f.GetOutput()))
+    ren.AddActor(refscene.stock_actor(mesh))
     win.Render()
     cpu = refscene.depth(win)
     terrain = cpu < 1.0
@@ -68,8 +63,8 @@ def frame(nx, ny):
     what = f"{nx} x {ny} (nx % 256 = {nx % 256})"
     print(f"{what}: {triangles} triangles, {runs} vertex shader runs ({runs / max(triangles, 1):.3f} a "
           f"triangle); {differ} of {n} terrain pixels differ in depth from the filter's mesh")
-    check(triangles == f.GetOutput().GetNumberOfPolys() and triangles > 5000,
-          f"{what}: the mapper draws the filter's {f.GetOutput().GetNumberOfPolys()} triangles")
+    check(triangles == mesh.GetNumberOfPolys() and triangles > 5000,
+          f"{what}: the mapper draws the filter's {mesh.GetNumberOfPolys()} triangles")
     check(n > 0.3 * W * H and differ <= 0.002 * n, f"{what}: the frame is the filter's mesh")
     check(runs < 1.0 * triangles, f"{what}: fewer vertex shader runs than triangles")
 
