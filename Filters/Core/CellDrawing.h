@@ -141,7 +141,7 @@ void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
 }
 
 // A ring block with nodata, cell by cell over its whole extent (HoleCells.h): quads with a
-// nodata corner as at full resolution, cells with no vertex but their corners as drawArea
+// nodata corner as at full resolution, cells with no vertex but their corners as drawInnerGrid
 // draws them, the others over their vertices (drawCellPerimeter).
 template <typename Sink>
 void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoint>& perimeter,
@@ -180,7 +180,7 @@ void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoi
     inside[West] = perimeter.size() - start > 1;
     if (perimeter.size() == 4)
     {
-      sink.quad(c.i0, c.j0, c.i1, c.j1); // only its corners: as drawArea draws a clean block
+      sink.quad(c.i0, c.j0, c.i1, c.j1); // only its corners: as drawInnerGrid draws a clean block
       continue;
     }
     drawCellPerimeter(sink, c.i0, c.j0, c.i1, c.j1, inside, perimeter, sides);

@@ -11,11 +11,6 @@ namespace gmm
 
 namespace
 {
-bool sameConfig(const BlockConfig& a, const BlockConfig& b)
-{
-  return a.level == b.level && a.edgeLevel == b.edgeLevel;
-}
-
 BlockConfig notDrawn()
 {
   BlockConfig c;
@@ -41,6 +36,7 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   levelsFromSelection_ = false;
   stats_ = FrameStats();
   drawnConfig_.assign(blocks, notDrawn());
+  drawnSides_.assign(blocks, DrawnSides{ notDrawn(), {} });
   drawnAround_.assign(blocks, LevelsAround{});
   drawnError_.assign(blocks, 0.0);
   drawnList_.clear();
@@ -48,6 +44,7 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   const int nodes = static_cast<int>(terrain_->qt.nodes.size());
   arena_.reset(blocks + nodes);
   nodeDrawn_.assign(nodes, 0);
+  nodeRedrawn_.assign(nodes, 0);
   nodeNow_.assign(nodes, 0);
   drawnMerged_.clear();
   nodeScratch_ = NodeScratch();
@@ -215,6 +212,45 @@ const FrameStats& Engine::updateWithLevels(const std::vector<int8_t>& levels)
   return finishFrame(nullptr);
 }
 
+void Engine::drawNodeSlot(int node, FrameStats& s)
+{
+  const Terrain& t = *terrain_;
+  blockScratch_.clear();
+  drawMergedArea(t.hf, t.qt, levels_, node, blockScratch_, emitScratch_);
+  arena_.assign(t.qt.blockCount() + node, blockScratch_.data(), blockScratch_.size());
+  nodeDrawn_[node] = 1;
+  nodeRedrawn_[node] = 1;
+  redrawnNodes_.push_back(node);
+  ++s.blocksRetessellated;
+}
+
+int Engine::drawnNodeOver(int block) const
+{
+  const Quadtree& qt = terrain_->qt;
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  int n = 0;
+  while (!nodeDrawn_[n])
+  {
+    const QuadtreeNode& node = qt.nodes[n];
+    int next = -1;
+    for (int k = node.firstChild; k < node.firstChild + node.childCount; ++k)
+    {
+      const QuadtreeNode& child = qt.nodes[k];
+      if (c >= child.colBegin && c < child.colEnd && r >= child.rowBegin && r < child.rowEnd)
+      {
+        next = k;
+        break;
+      }
+    }
+    if (next < 0)
+    {
+      return -1; // a leaf: the block is not below a drawn node
+    }
+    n = next;
+  }
+  return n;
+}
+
 bool Engine::finishMergedNodes(
   const std::vector<int>* merged, const std::vector<double>* mergedFactor, FrameStats& s)
 {
@@ -251,11 +287,7 @@ bool Engine::finishMergedNodes(
     }
     if (!nodeDrawn_[n])
     {
-      blockScratch_.clear();
-      emitMergedNode(t.hf, t.qt, n, blockScratch_, emitScratch_);
-      arena_.assign(blocks + n, blockScratch_.data(), blockScratch_.size());
-      nodeDrawn_[n] = 1;
-      ++s.blocksRetessellated;
+      drawNodeSlot(n, s);
       changed = true;
     }
   }
@@ -294,20 +326,20 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
   }
   auto visit = [&](int b) {
     BlockConfig cfg = notDrawn();
+    DrawnSides sides;
+    sides.config = cfg;
     if (levels_[b] >= 0)
     {
       ++s.visibleBlocks;
       // A block whose level and neighbours' levels are those it was drawn with keeps its
-      // configuration and error (blockConfigOf depends on those five levels alone).
+      // configuration, its error and its slot (blockConfigOf and drawnSidesOf depend on
+      // those five levels alone).
       const LevelsAround around = levelsAround(t.qt, levels_, b);
       const bool unchanged = drawnConfig_[b].level >= 0 && around == drawnAround_[b];
-      if (unchanged)
-      {
-        cfg = drawnConfig_[b];
-      }
-      else
+      if (!unchanged)
       {
         cfg = blockConfigOf(t.qt, levels_, b);
+        sides = drawnSidesOf(t.qt, levels_, b, cfg);
         drawnAround_[b] = around;
         drawnError_[b] = blockCertifiedError(t.qt, t.table, b, cfg);
       }
@@ -317,20 +349,47 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
       {
         s.maxScreenError = std::max(s.maxScreenError, e * (*factor)[b]);
       }
+      if (unchanged)
+      {
+        return;
+      }
     }
-    if (sameConfig(cfg, drawnConfig_[b]))
+    else if (drawnConfig_[b].level < 0)
     {
-      return;
+      return; // not drawn now nor then
+    }
+    drawnConfig_[b] = cfg;
+    if (sides == drawnSides_[b])
+    {
+      return; // what the slot holds is the same (a west / north edge a neighbour draws)
     }
     changed = true;
-    drawnConfig_[b] = cfg;
+    drawnSides_[b] = sides;
     blockScratch_.clear();
     if (cfg.level >= 0)
     {
-      emitBlock(t.hf, t.qt, b, cfg, BlockPart::Whole, blockScratch_, emitScratch_);
+      drawArea(t.hf, t.qt, levels_, b, cfg, blockScratch_, emitScratch_);
       ++s.blocksRetessellated;
     }
     arena_.assign(b, blockScratch_.data(), blockScratch_.size());
+    // A merged node west or north of the block draws the block's strip on that side in its
+    // connects (Tessellate.h): what the block draws changed, so that node's slot is drawn
+    // again (once, after every block is visited).
+    const std::array<int, 4> neighbour = t.qt.blockNeighbours(b);
+    for (int side : { West, North })
+    {
+      const int nb = neighbour[side];
+      if (nb >= 0 && levels_[nb] == kCoveredLevel)
+      {
+        const int n = drawnNodeOver(nb);
+        if (n >= 0 && !nodeRedrawn_[n])
+        {
+          nodeRedrawn_[n] = 1;
+          redrawnNodes_.push_back(n);
+          nodesToRedraw_.push_back(n);
+        }
+      }
+    }
   };
   for (int b : nowDrawn_)
   {
@@ -343,6 +402,16 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
       visit(b); // no longer drawn: its slot is released
     }
   }
+  for (int n : nodesToRedraw_)
+  {
+    drawNodeSlot(n, s);
+  }
+  nodesToRedraw_.clear();
+  for (int n : redrawnNodes_)
+  {
+    nodeRedrawn_[n] = 0;
+  }
+  redrawnNodes_.clear();
   drawnList_.swap(nowDrawn_);
   s.culledBlocks = t.qt.blockCount() - s.visibleBlocks;
   arena_.endFrame();

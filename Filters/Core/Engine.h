@@ -169,6 +169,10 @@ private:
     const std::vector<int>* candidates = nullptr, const std::vector<int>* merged = nullptr,
     const std::vector<double>* mergedFactor = nullptr);
   // The merged nodes' part of finishFrame: their slots in the arena and statistics.
+  // Draws merged node `node`'s slot (drawMergedArea) at this frame's levels.
+  void drawNodeSlot(int node, FrameStats& s);
+  // The merged node in the arena this frame that covers `block`, or -1.
+  int drawnNodeOver(int block) const;
   bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
     FrameStats& s);
   // Budgeted frames with merged nodes: phase 1 of BudgetSelection.h on the hierarchical
@@ -202,6 +206,10 @@ private:
   NodeSelection nodeSelection_;
   NodeScratch nodeScratch_;
   std::vector<uint8_t> nodeDrawn_, nodeNow_; // per node: in the arena / merged this frame
+  // Per node: drawn into its slot this frame (nodes listed in redrawnNodes_), and the drawn
+  // nodes whose connects must be drawn again after the blocks are visited.
+  std::vector<uint8_t> nodeRedrawn_;
+  std::vector<int> redrawnNodes_, nodesToRedraw_;
   std::vector<int> drawnMerged_;             // nodes drawn whole, last finished frame
   double heightScale_ = 1.0;
 
@@ -216,10 +224,11 @@ private:
   // budgeted frame's phase 2 changes only its blocks' levels), so the next one updates
   // levels_ in place (selectNodes' lastBlocks). Every other writer of levels_ clears it.
   bool levelsFromSelection_ = false;
-  // Per block, the configuration it was last tessellated with (level -1 = not drawn), so a
-  // frame regenerates only blocks whose configuration changed; their triangles live in
-  // the arena's slots.
+  // Per block, its configuration in the last frame (level -1 = not drawn), and what its
+  // slot in the arena was drawn with (drawArea's key), so that a frame regenerates only the
+  // slots whose triangles changed.
   std::vector<BlockConfig> drawnConfig_;
+  std::vector<DrawnSides> drawnSides_;
   // Per drawn block, the levels its configuration was derived from (levelsAround) and the
   // configuration's certified error (blockCertifiedError), so that a frame derives them
   // again only for blocks whose level or a neighbour's changed.
@@ -227,7 +236,7 @@ private:
   std::vector<double> drawnError_;
   IndexArena arena_;
   std::vector<uint32_t> blockScratch_;
-  EmitScratch emitScratch_; // emitBlock / emitMergedNode buffers, reused frame to frame
+  EmitScratch emitScratch_; // drawArea / emitMergedNode buffers, reused frame to frame
   mutable std::vector<uint32_t> indices_;
   mutable std::vector<int> indexSlots_; // indices()' slots, in slot order
   mutable bool indicesCurrent_ = true;

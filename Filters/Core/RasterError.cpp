@@ -261,7 +261,7 @@ inline double cellResidual(double h, double z00, double area, int64_t s, int64_t
 
 float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std::vector<int>& R)
 {
-  // drawArea's cells: columns C[1..k-1] and rows R[1..L-1], all one step apart.
+  // drawInnerGrid's cells: columns C[1..k-1] and rows R[1..L-1], all one step apart.
   if (C.size() < 4 || R.size() < 4)
   {
     return 0.0f; // fewer than two inner columns or rows: no cell

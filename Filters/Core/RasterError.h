@@ -27,7 +27,7 @@ float roundUpToFloat(double e);
 // touching nodata is an accepted full-resolution hole and counts 0.
 float trianglesError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool strictNodata);
 
-// Error of the inner grid of a ring block at a level > 0 (what Tessellate's drawArea
+// Error of the inner grid of a ring block at a level > 0 (what Tessellate's drawInnerGrid
 // emits over inner columns C[1..k-1] and rows R[1..L-1], C and R from edgeSamples), with
 // every sample evaluated once in a direct walk over the cells: the same value as
 // rasterising those triangles (up to the rounding of a sample on a cell border, which both

@@ -33,7 +33,7 @@ void drawHStrip(Sink& sink, const int* cols, std::size_t count, int ja, int jb)
 
 // Inner grid of a ring block: samples cols[1..k-1] x rows[1..L-1] at the block's own step.
 template <typename Sink>
-void drawArea(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
+void drawInnerGrid(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
 {
   for (std::size_t t = 1; t + 2 < R.size(); ++t)
   {
@@ -216,15 +216,37 @@ void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
   drawSideLines(sink, scratch, side);
 }
 
+// What of a block to draw: its inner part (the inner grid, or the cells of a block with
+// nodata; a one-quad or thin block, which has no strips, only with every side) and which of
+// its side strips.
+struct PartsToDraw
+{
+  bool inner = false;
+  std::array<bool, 4> side{ false, false, false, false };
+  bool everySide() const { return side[0] && side[1] && side[2] && side[3]; }
+};
+
+PartsToDraw partsOf(BlockPart part)
+{
+  PartsToDraw parts;
+  parts.inner = part == BlockPart::Whole || part == BlockPart::Inner;
+  for (int side = South; side <= West; ++side)
+  {
+    parts.side[side] = part == BlockPart::Whole ||
+      static_cast<int>(part) == static_cast<int>(BlockPart::StripSouth) + side;
+  }
+  return parts;
+}
+
 template <typename Sink>
 void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& config,
-  BlockPart part, EmitScratch& scratch)
+  const PartsToDraw& parts, EmitScratch& scratch)
 {
   const BlockRect r = blockRect(qt, block);
   const BlockShape shape = blockShape(r.i1 - r.i0, r.j1 - r.j0, config.level);
   if (shape == BlockShape::OneQuad || shape == BlockShape::Thin)
   {
-    if (part != BlockPart::Whole)
+    if (!parts.inner || !parts.everySide())
     {
       return;
     }
@@ -260,7 +282,6 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   {
     return;
   }
-  const bool wantsInner = part == BlockPart::Whole || part == BlockPart::Inner;
   const HoleCells* cells = nullptr;
   if (drawnAsHoleCells(qt, block, config.level))
   {
@@ -268,7 +289,7 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     // block, its border included, but for the border rows clear of nodata, which side
     // strips draw to the cells' vertices.
     buildHoleCells(qt, block, config.level, scratch.cells);
-    if (wantsInner)
+    if (parts.inner)
     {
       drawAreaAroundHoles(sink, scratch.cells, scratch.inner, scratch.sides);
     }
@@ -284,20 +305,132 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   {
     edgeSamples(r.i0, r.i1, config.level, C);
     edgeSamples(r.j0, r.j1, config.level, R);
-    if (wantsInner)
+    if (parts.inner)
     {
-      drawArea(sink, C, R);
+      drawInnerGrid(sink, C, R);
     }
   }
   for (int side = South; side <= West; ++side)
   {
-    const bool wanted = part == BlockPart::Whole ||
-      static_cast<int>(part) == static_cast<int>(BlockPart::StripSouth) + side;
-    if (wanted && (!cells || cells->strip[side]))
+    if (parts.side[side] && (!cells || cells->strip[side]))
     {
       drawSide(sink, r, C, R, side, config.edgeLevel[side], scratch, cells);
     }
   }
+}
+
+template <typename Sink>
+void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& config,
+  BlockPart part, EmitScratch& scratch)
+{
+  emitBlockTo(sink, qt, block, config, partsOf(part), scratch);
+}
+
+// Drops the triangles over nodata of `block` unless told to keep them; where the block has
+// no nodata there is nothing to drop, and the test would read each vertex's height.
+TriangleSink blockSink(const Heightfield& hf, const Quadtree& qt, int block,
+  std::vector<uint32_t>& out, bool keepNodata)
+{
+  return TriangleSink(hf, out, keepNodata || !qt.blockHasNodata[static_cast<std::size_t>(block)]);
+}
+
+// Whether the connect of what lies across the west or north side of a block draws that
+// side's strip: a drawn block's or a merged node's does (drawEastConnect,
+// drawSouthConnect); the DEM's border and culled space have none, and the strip is then
+// the block's own.
+bool sideDrawnByNeighbour(const std::vector<int8_t>& levels, int neighbour)
+{
+  return neighbour >= 0 && drawnLevel(levels[neighbour]);
+}
+
+// Whether a connect toward `neighbour` draws its strip on the shared edge: a drawn block
+// has one; a merged node's fan has no strips (its perimeter is the edge).
+bool hasStripAcross(const std::vector<int8_t>& levels, int neighbour)
+{
+  return neighbour >= 0 && levels[neighbour] >= 0;
+}
+
+// The strip of `block` (drawn at levels[block]) on `side`: a connect's half across.
+void drawStripOf(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, int side, std::vector<uint32_t>& out, EmitScratch& scratch)
+{
+  PartsToDraw strip;
+  strip.side[side] = true;
+  TriangleSink sink = blockSink(hf, qt, block, out, false);
+  emitBlockTo(sink, qt, block, blockConfigOf(qt, levels, block), strip, scratch);
+}
+
+// The main area of a drawn block (the part of Poyart's drawArea before its connects): its
+// inner grid (or cells, or its one quad), with the strips of its west and north sides where
+// no connect joins them. At the DEM's border and beside culled space the edge is at the
+// block's own level: the regular grid that Poyart's main area extends to.
+void drawMainArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, const BlockConfig& config, const std::array<int, 4>& neighbour,
+  std::vector<uint32_t>& out, EmitScratch& scratch)
+{
+  PartsToDraw parts;
+  parts.inner = true;
+  const BlockShape shape = blockShape(qt.blockWidth(block), qt.blockHeight(block), config.level);
+  if (shape == BlockShape::Ring)
+  {
+    parts.side[West] = !sideDrawnByNeighbour(levels, neighbour[West]);
+    parts.side[North] = !sideDrawnByNeighbour(levels, neighbour[North]);
+  }
+  else
+  {
+    parts.side = { true, true, true, true }; // no strips: all of it is area
+  }
+  TriangleSink sink = blockSink(hf, qt, block, out, false);
+  emitBlockTo(sink, qt, block, config, parts, scratch);
+}
+
+// A connect across `side` (East or South) of `block`: the block's strip on that side, then,
+// when a drawn block lies across it, that block's strip on the shared edge. Both strips end
+// on the edge sampled at the coarser of the two levels (edgeLevelOf), which is what keeps
+// each block's triangles, and so its error table, its own.
+void drawConnect(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, const BlockConfig& config, int side, int neighbour, std::vector<uint32_t>& out,
+  EmitScratch& scratch)
+{
+  PartsToDraw own;
+  own.side[side] = true;
+  TriangleSink sink = blockSink(hf, qt, block, out, false);
+  emitBlockTo(sink, qt, block, config, own, scratch);
+  if (hasStripAcross(levels, neighbour))
+  {
+    drawStripOf(hf, qt, levels, neighbour, (side + 2) % 4, out, scratch);
+  }
+}
+
+// The blocks along the east (column colEnd) or south (row rowBegin - 1) side of a node,
+// outside it, south to north / west to east; none at the DEM's border.
+template <typename Visit>
+void forEachBlockAlong(const Quadtree& qt, const QuadtreeNode& node, int side, Visit visit)
+{
+  if (side == East && node.colEnd < qt.blockCols)
+  {
+    for (int r = node.rowBegin; r < node.rowEnd; ++r)
+      visit(qt.blockIndex(node.colEnd, r));
+  }
+  else if (side == South && node.rowBegin > 0)
+  {
+    for (int c = node.colBegin; c < node.colEnd; ++c)
+      visit(qt.blockIndex(c, node.rowBegin - 1));
+  }
+}
+
+void drawEastConnect(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, const BlockConfig& config, const std::array<int, 4>& neighbour,
+  std::vector<uint32_t>& out, EmitScratch& scratch)
+{
+  drawConnect(hf, qt, levels, block, config, East, neighbour[East], out, scratch);
+}
+
+void drawSouthConnect(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, const BlockConfig& config, const std::array<int, 4>& neighbour,
+  std::vector<uint32_t>& out, EmitScratch& scratch)
+{
+  drawConnect(hf, qt, levels, block, config, South, neighbour[South], out, scratch);
 }
 
 } // namespace
@@ -312,9 +445,8 @@ void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const Block
 void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
   BlockPart part, std::vector<uint32_t>& out, EmitScratch& scratch, bool keepNodata)
 {
-  // Every vertex is a sample of the block (borders included): where it has no nodata,
-  // there is nothing to drop, and the test would read each vertex's height.
-  TriangleSink sink(hf, out, keepNodata || !qt.blockHasNodata[static_cast<std::size_t>(block)]);
+  // Every vertex is a sample of the block (borders included).
+  TriangleSink sink = blockSink(hf, qt, block, out, keepNodata);
   emitBlockTo(sink, qt, block, config, part, scratch);
 }
 
@@ -383,6 +515,56 @@ LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels,
   return around;
 }
 
+void drawArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, const BlockConfig& config, std::vector<uint32_t>& out, EmitScratch& scratch)
+{
+  const std::array<int, 4> neighbour = qt.blockNeighbours(block);
+  drawMainArea(hf, qt, levels, block, config, neighbour, out, scratch);
+  drawEastConnect(hf, qt, levels, block, config, neighbour, out, scratch);
+  drawSouthConnect(hf, qt, levels, block, config, neighbour, out, scratch);
+}
+
+DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
+  const BlockConfig& config)
+{
+  DrawnSides key;
+  key.config = config;
+  const std::array<int, 4> neighbour = qt.blockNeighbours(block);
+  for (int side : { West, North })
+  {
+    if (qt.blockIsRingAt(block, config.level) && sideDrawnByNeighbour(levels, neighbour[side]))
+    {
+      key.config.edgeLevel[side] = -1; // that strip is the neighbour's to draw
+    }
+  }
+  for (int side : { East, South })
+  {
+    const int nb = neighbour[side];
+    if (hasStripAcross(levels, nb))
+    {
+      const int opposite = (side + 2) % 4;
+      key.across[side == East ? 0 : 1] = { levels[nb],
+        static_cast<int8_t>(edgeLevelOf(qt, levels, nb, levels[nb], opposite, block)) };
+    }
+  }
+  return key;
+}
+
+void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int node, std::vector<uint32_t>& out, EmitScratch& scratch)
+{
+  emitMergedNode(hf, qt, node, out, scratch);
+  for (int side : { East, South })
+  {
+    forEachBlockAlong(qt, qt.nodes[node], side, [&](int b) {
+      if (hasStripAcross(levels, b))
+      {
+        drawStripOf(hf, qt, levels, b, (side + 2) % 4, out, scratch);
+      }
+    });
+  }
+}
+
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   std::vector<uint32_t>& out, const std::vector<int>& merged)
 {
@@ -392,12 +574,12 @@ void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int
   {
     if (levels[b] >= 0)
     {
-      emitBlock(hf, qt, b, blockConfigOf(qt, levels, b), BlockPart::Whole, out, scratch);
+      drawArea(hf, qt, levels, b, blockConfigOf(qt, levels, b), out, scratch);
     }
   }
   for (int n : merged)
   {
-    emitMergedNode(hf, qt, n, out, scratch);
+    drawMergedArea(hf, qt, levels, n, out, scratch);
   }
 }
 

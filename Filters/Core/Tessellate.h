@@ -1,13 +1,24 @@
 // Tessellation: one block at one level, stitched to its neighbours, as triangle indices
 // into the full-resolution vertex array (vertex = j*nx + i; nothing is duplicated).
 //
-// A ring-shaped block (see Levels.h) is drawn as an inner grid over its inner samples
-// (drawArea, one drawHStrip per row band) plus four side strips between the block's edge
-// and its inner ring. Along each edge the samples of the coarser of the two blocks are used
-// (the edge level); each side strip joins the edge samples to the inner ring by fans
-// (drawFan, any level to any other, difference > 1 included). Both blocks of a shared edge
-// derive its samples from the edge level alone, so they agree and no crack or T-junction
-// can appear. Triangles are counter-clockwise seen from +z in world coordinates.
+// A ring-shaped block (see Levels.h) is made of an inner grid over its inner samples (one
+// drawHStrip per row band) and four side strips between the block's edge and its inner
+// ring. Along each edge the samples of the coarser of the two blocks are used (the edge
+// level); each side strip joins the edge samples to the inner ring by fans (drawFan, any
+// level to any other, difference > 1 included). Both blocks of a shared edge derive its
+// samples from the edge level alone, so they agree and no crack or T-junction can appear.
+// Triangles are counter-clockwise seen from +z in world coordinates.
+//
+// Drawing follows Poyart et al.: each drawn block or merged node draws its area and its
+// east and south connects (drawArea: the main area, drawEastConnect, drawSouthConnect;
+// drawMergedArea). A connect is the band between two blocks' inner rings: the block's strip
+// on that side and the strip of the drawn block across it, both ending on the shared edge
+// at the edge level (a merged node's connect has only the strips across: its fan reaches
+// the edge). A block's west and north strips are thus drawn by the connects of what lies
+// west and north of it, or by its own main area where nothing drawn lies across (the DEM's
+// border, culled space). Every triangle is still one block's (emitBlock) or one node's
+// fan, which is what the error table certifies; only who emits it follows the paper.
+//
 // Triangles touching a nodata (NaN) sample are not emitted. A block with nodata at a level
 // above 0 is drawn cell by cell around the nodata (HoleCells.h), over its extent but for
 // the border rows of its level's cells that hold no nodata, which side strips draw as any
@@ -64,7 +75,8 @@ struct EmitScratch
   EmitSides sides;
 };
 
-// Appends the block's triangles (3 indices each) to `out`. Indices are emitted even when a
+// Appends the block's own triangles (3 indices each) to `out`: its inner part and the strips
+// `part` names, whoever draws them in a frame (drawArea). Indices are emitted even when a
 // vertex is NaN if `keepNodata` is true (used by the error table to see holes). The form
 // with a scratch allocates nothing once its buffers have grown: the engine emits every
 // changed block of a frame through one (at 4-quad leaves a from-scratch frame spent a
@@ -183,9 +195,43 @@ using LevelsAround = std::array<int8_t, 5>;
 constexpr int8_t kNoNeighbour = -128;
 LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
+// Poyart's drawArea: appends what a drawn block (levels[block] >= 0, `config` its
+// blockConfigOf) draws in a frame: its main area (inner grid or cells or its one quad, and
+// its west and north strips where no drawn block lies across them), then drawEastConnect
+// and drawSouthConnect (its east / south strip and the west / north strip of the drawn
+// block across). Over all drawn blocks this is every block's emitBlock(Whole), each
+// triangle once.
+void drawArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int block, const BlockConfig& config, std::vector<uint32_t>& out, EmitScratch& scratch);
+
+// What drawArea's triangles for `block` depend on: its configuration but for the west /
+// north edge levels whose strips a neighbour draws, and the level and edge level of the
+// strips it draws for its east and south neighbours ({-1, -1} where it draws none). Two
+// frames with equal keys draw the block's slot alike (the engine keeps the slot then).
+struct DrawnSides
+{
+  BlockConfig config;
+  std::array<std::array<int8_t, 2>, 2> across{ { { -1, -1 }, { -1, -1 } } }; // east, south
+  bool operator==(const DrawnSides& o) const
+  {
+    return config.level == o.config.level && config.edgeLevel == o.config.edgeLevel &&
+      across == o.across;
+  }
+  bool operator!=(const DrawnSides& o) const { return !(*this == o); }
+};
+DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
+  const BlockConfig& config);
+
+// Poyart's drawArea for a merged node: its fan (emitMergedNode), then its east and south
+// connects: the west / north strips of the drawn blocks along its east / south side, any
+// number of them of any sizes (a merged node across draws none: their perimeters meet).
+// The connects change only with those blocks' drawArea (their keys, DrawnSides).
+void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  int node, std::vector<uint32_t>& out, EmitScratch& scratch);
+
 // Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in
-// block order, then the merged nodes listed in `merged` (their blocks at kCoveredLevel).
-// `out` is cleared first.
+// block order with drawArea, then the merged nodes listed in `merged` (their blocks at
+// kCoveredLevel) with drawMergedArea. `out` is cleared first.
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   std::vector<uint32_t>& out, const std::vector<int>& merged = {});
 

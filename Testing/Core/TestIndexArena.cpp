@@ -117,19 +117,21 @@ TEST(IndexArena, SmallChangeUploadsSmallRanges)
   e.updateWithLevels(levels);
   expectFrameConsistent(e, m, "all at level 1");
   EXPECT_TRUE(e.indexArena().rewritten()); // the first frame
-  // One block in the middle goes to level 0 (its neighbours keep their edges: the coarser
-  // side sets an edge, and they are the coarser).
+  // One block in the middle goes to level 0. Its neighbours keep their edges (the coarser
+  // side sets an edge, and they are the coarser), but its west and north strips, whose inner
+  // ring moved, are drawn by the east and south connects of its west and north neighbours
+  // (Tessellate.h): three slots.
   const int b = qt.blockIndex(qt.blockCols / 2, qt.blockRows / 2);
   levels[b] = 0;
   e.updateWithLevels(levels);
   expectFrameConsistent(e, m, "one block refined");
   EXPECT_FALSE(e.indexArena().rewritten());
-  EXPECT_EQ(e.stats().blocksRetessellated, 1);
-  // Uploaded: that block's new slot and its old one, released.
+  EXPECT_EQ(e.stats().blocksRetessellated, 3);
+  // Uploaded: those slots, new and released.
   const std::size_t full = e.indexArena().indices().size();
   EXPECT_GT(m.uploaded, 0u);
   EXPECT_LT(m.uploaded * 10, full) << m.uploaded << " of " << full << " indices uploaded";
-  // And back to level 1: the neighbours' slots are untouched again.
+  // And back to level 1: the east and south neighbours' slots are untouched again.
   levels[b] = 1;
   e.updateWithLevels(levels);
   expectFrameConsistent(e, m, "back to level 1");
