@@ -86,6 +86,18 @@ void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const Block
 void emitBlock(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
   BlockPart part, std::vector<uint32_t>& out, EmitScratch& scratch, bool keepNodata = false);
 
+// Any parts of a block at once (emitBlock's BlockPart names one): its inner part (the inner
+// grid, or the cells of a block with nodata; a one-quad or thin block, which has no strips,
+// is drawn only with its inner part and every side) and any of its side strips.
+struct BlockParts
+{
+  bool inner = false;
+  std::array<bool, 4> side{ false, false, false, false };
+  bool everySide() const { return side[0] && side[1] && side[2] && side[3]; }
+};
+void emitBlockParts(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& config,
+  const BlockParts& parts, std::vector<uint32_t>& out, EmitScratch& scratch);
+
 // The same triangles as grid points, nodata or not (for the error table, which needs the
 // grid positions and sees holes itself). `out` is appended to.
 void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, BlockPart part,
