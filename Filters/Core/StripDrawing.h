@@ -1,7 +1,7 @@
 // The strips every tessellation is made of, into any triangle sink (TriangleSinks.h):
 // rows of quads (drawHStrip, drawInnerGrid) and the band between two polylines cut into
-// fans (drawSideStrip, drawFan: any level to any other). Private to the engine's drawing
-// (Tessellate.cpp, Connects.cpp, MergedNodes.cpp), apart because all three draw with them.
+// fans (drawSideStrip, drawFan: any level to any other). Private to Tessellate.cpp, apart
+// from how it assembles a block from them (shapes, nodata cells, which parts).
 #pragma once
 
 #include "CellDrawing.h"
