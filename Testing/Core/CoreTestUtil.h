@@ -3,6 +3,7 @@
 // use them check the engine independently of the code that makes the claims.
 #pragma once
 
+#include "Engine.h"
 #include "Heightfield.h"
 #include "Quadtree.h"
 #include "View.h"
@@ -127,6 +128,19 @@ inline std::vector<int8_t> randomValidLevels(const gmm::Quadtree& qt, Rng& rng)
       levels[b] = static_cast<int8_t>(m);
   }
   return levels;
+}
+
+// One engine frame of a random kind: a random view at tau 0.3 - 8 (6 in 10), a
+// view-independent error of 0 - 50 (2 in 10), or random valid levels (2 in 10).
+inline void randomEngineFrame(gmm::Engine& e, Rng& rng)
+{
+  const int kind = randInt(rng, 0, 9);
+  if (kind < 6)
+    e.update(randomViewOver(e.heightfield(), rng), randReal(rng, 0.3, 8.0));
+  else if (kind < 8)
+    e.updateForError(randReal(rng, 0.0, 50.0));
+  else
+    e.updateWithLevels(randomValidLevels(e.quadtree(), rng));
 }
 
 // Triangles of the coarsest frame (a huge tolerance, no nodata) below quadtree node

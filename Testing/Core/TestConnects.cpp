@@ -196,13 +196,7 @@ TEST(Connects, EachSlotIsItsAreaAndEastSouthConnects)
     ASSERT_EQ(e.setHeightfield(hf, 4 << randInt(rng, 0, 3)), "");
     for (int frame = 0; frame < 25; ++frame)
     {
-      const int kind = randInt(rng, 0, 9);
-      if (kind < 6)
-        e.update(randomViewOver(e.heightfield(), rng), randReal(rng, 0.3, 8.0));
-      else if (kind < 8)
-        e.updateForError(randReal(rng, 0.0, 50.0));
-      else
-        e.updateWithLevels(randomValidLevels(e.quadtree(), rng));
+      randomEngineFrame(e, rng);
       ASSERT_EQ(e.lastError(), "");
       const std::string what = "dem " + std::to_string(dem) + " frame " + std::to_string(frame);
       checkFrame(e, what, found);

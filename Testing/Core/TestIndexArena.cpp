@@ -90,17 +90,8 @@ TEST(IndexArena, MirrorAndTrianglesAfterRandomFrames)
     Mirror m;
     for (int frame = 0; frame < 60; ++frame)
     {
-      const int kind = randInt(rng, 0, 9);
-      if (kind < 6)
-        e.update(randomViewOver(e.heightfield(), rng), randReal(rng, 0.3, 8.0));
-      else if (kind < 8)
-        e.updateForError(randReal(rng, 0.0, 50.0));
-      else
-      {
-        // Explicit levels: random valid ones, some blocks not drawn.
-        e.updateWithLevels(randomValidLevels(e.quadtree(), rng));
-        ASSERT_EQ(e.lastError(), "");
-      }
+      randomEngineFrame(e, rng);
+      ASSERT_EQ(e.lastError(), "");
       expectFrameConsistent(e, m, "dem " + std::to_string(dem) + " frame " + std::to_string(frame));
     }
   }
