@@ -44,8 +44,7 @@ void drawMainArea(const Heightfield& hf, const Quadtree& qt, const std::vector<i
 {
   BlockParts parts;
   parts.inner = true;
-  const BlockShape shape = blockShape(qt.blockWidth(block), qt.blockHeight(block), config.level);
-  if (shape == BlockShape::Ring)
+  if (qt.blockIsRingAt(block, config.level))
   {
     parts.side[West] = !sideDrawnByNeighbour(levels, neighbour[West]);
     parts.side[North] = !sideDrawnByNeighbour(levels, neighbour[North]);

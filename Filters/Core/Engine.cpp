@@ -405,6 +405,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
   for (int n : nodesToRedraw_)
   {
     drawNodeSlot(n, s);
+    changed = true;
   }
   nodesToRedraw_.clear();
   for (int n : redrawnNodes_)

@@ -168,11 +168,11 @@ private:
   const FrameStats& finishFrame(const std::vector<double>* factor,
     const std::vector<int>* candidates = nullptr, const std::vector<int>* merged = nullptr,
     const std::vector<double>* mergedFactor = nullptr);
-  // The merged nodes' part of finishFrame: their slots in the arena and statistics.
   // Draws merged node `node`'s slot (drawMergedArea) at this frame's levels.
   void drawNodeSlot(int node, FrameStats& s);
   // The merged node in the arena this frame that covers `block`, or -1.
   int drawnNodeOver(int block) const;
+  // The merged nodes' part of finishFrame: their slots in the arena and statistics.
   bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
     FrameStats& s);
   // Budgeted frames with merged nodes: phase 1 of BudgetSelection.h on the hierarchical

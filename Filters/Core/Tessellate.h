@@ -209,7 +209,7 @@ LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels,
 
 // Poyart's drawArea: appends what a drawn block (levels[block] >= 0, `config` its
 // blockConfigOf) draws in a frame: its main area (inner grid or cells or its one quad, and
-// its west and north strips where no drawn block lies across them), then drawEastConnect
+// its west and north strips where nothing drawn lies across them), then drawEastConnect
 // and drawSouthConnect (its east / south strip and the west / north strip of the drawn
 // block across). Over all drawn blocks this is every block's emitBlock(Whole), each
 // triangle once.
@@ -229,7 +229,6 @@ struct DrawnSides
     return config.level == o.config.level && config.edgeLevel == o.config.edgeLevel &&
       across == o.across;
   }
-  bool operator!=(const DrawnSides& o) const { return !(*this == o); }
 };
 DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
   const BlockConfig& config);
