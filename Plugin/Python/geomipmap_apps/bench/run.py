@@ -86,6 +86,11 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
     route = (flight.Line if args.path == "line" else flight.Orbit)(
         heights, frames=args.frames, pitch=15.0, view_angle=50.0)
     bench = Bench(scene, image, heights, route, args.size)
+    if args.geomorph_range is not None:
+        scene.mapper.SetGeomorphRange(args.geomorph_range)
+        for f in bench.filters.values():
+            f.SetGeomorphRange(args.geomorph_range)
+    out.note(label, f"GeomorphRange {scene.mapper.GetGeomorphRange():g}")
     configs = _build(label, args, methods, over, budget_gb, bench, heights, image, skip, out)
     _fly(label, args, configs, bench, heights, out)
     out.note(label, f"peak RSS {_rss_gb():.1f} GB")
