@@ -96,9 +96,9 @@ std::vector<double> randomChain(Rng& rng)
   return e;
 }
 
-// A flight over makeSyntheticTerrain(257, 193, 30 m) that jumps every 9th frame (another
-// part of the DEM, another direction, as a user's camera can), 40 m a frame between jumps,
-// 1 200 - 1 800 m up, looking ahead and down.
+// A flight over its own terrain (terrain(): 257 x 193 samples, 30 m) that jumps every 9th
+// frame (another part of the DEM, another direction, as a user's camera can), 40 m a frame
+// between jumps, 1 200 - 1 800 m up, looking ahead and down.
 class JumpingFlight
 {
 public:
@@ -106,13 +106,17 @@ public:
     : rng_(seed)
   {
   }
+  static gmm::Heightfield terrain()
+  {
+    return gmm::makeSyntheticTerrain(kNx, kNy, kSpacing, 5, 900.0, 1);
+  }
   gmm::View view(int frame)
   {
-    const double ext = 256 * 30.0;
+    const double ext = (kNx - 1) * kSpacing;
     if (frame % 9 == 8)
     {
       x_ = u_(rng_) * ext;
-      y_ = u_(rng_) * 192 * 30.0;
+      y_ = u_(rng_) * (kNy - 1) * kSpacing;
       heading_ = u_(rng_) * 6.283;
     }
     x_ += 40.0 * std::cos(heading_);
@@ -128,9 +132,11 @@ public:
   }
 
 private:
+  static constexpr int kNx = 257, kNy = 193;
+  static constexpr double kSpacing = 30.0;
   std::mt19937 rng_;
   std::uniform_real_distribution<double> u_{ 0.0, 1.0 };
-  double x_ = 0.2 * 256 * 30.0, y_ = 0.3 * 256 * 30.0, heading_ = 0.3;
+  double x_ = 0.2 * (kNx - 1) * kSpacing, y_ = 0.3 * (kNx - 1) * kSpacing, heading_ = 0.3;
 };
 } // namespace
 
@@ -541,9 +547,8 @@ TEST(MorphRamp, ReusedFrameOverDrawnBlocksEqualsAFreshOne)
   // jumps (whole new views, merged nodes coming and going), every entry must equal that of
   // a frame computed from nothing: a fresh MorphFrame whose blocks are found in the levels.
   // Both use caches with the same history, so the rise limit sees the same past.
-  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 193, 30.0, 5, 900.0, 1);
   gmm::Engine e;
-  ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+  ASSERT_EQ(e.setHeightfield(JumpingFlight::terrain(), 16, 1), "");
   e.setMorphRange(gmm::kDefaultMorphRange);
   gmm::MorphCache reusedCache, freshCache;
   gmm::MorphFrame reused;
@@ -592,9 +597,8 @@ TEST(MorphRamp, TableBoundsGiveTheMeasuredFactors)
   // changes tau (a smaller budget must send kept bounds back to measuring), every factor
   // must equal the one from measured errors, each bound must be at least the measured
   // corner (morphPartErrors, the rasterised surface), and the reported bound may only grow.
-  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 193, 30.0, 5, 900.0, 1);
   gmm::Engine e;
-  ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+  ASSERT_EQ(e.setHeightfield(JumpingFlight::terrain(), 16, 1), "");
   e.setMorphRange(gmm::kDefaultMorphRange);
   gmm::MorphCache tableCache, measuredCache;
   gmm::MorphFrame withTable, measured;
