@@ -44,16 +44,6 @@ def _list(kind, allow_empty=False):
     return parse
 
 
-def _positive(text):
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text!r}")
-    return value
-
-
 def build_parser():
     p = command.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0],
                 epilog=__doc__.split("\n", 1)[1], formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -69,7 +59,7 @@ def build_parser():
                    help="pixel error bounds for ours (default 0.5,1,2,4,8)")
     p.add_argument("--methods", default=",".join(METHODS), help="subset of " + ",".join(METHODS))
     p.add_argument("--frames", type=int, default=12, help="frames per method (default 12)")
-    p.add_argument("--geomorph-range", type=_positive, default=None, metavar="R",
+    p.add_argument("--geomorph-range", type=command.positive(float), default=None, metavar="R",
                    help="GeomorphRange of ours' mapper and of the filters that measure its "
                         "frames (default: the mapper's, 3): what geomorphing's level path "
                         "costs against how gradually it changes levels")
