@@ -18,58 +18,58 @@ bool sideDrawnByNeighbour(const std::vector<int8_t>& levels, int neighbour)
   return neighbour >= 0 && drawnLevel(levels[neighbour]);
 }
 
-// Whether a connect toward `neighbour` draws its strip on the shared edge: a drawn block
-// has one; a merged node's fan has no strips (its perimeter is the edge).
-bool hasStripAcross(const std::vector<int8_t>& levels, int neighbour)
+// Whether a connect toward `neighbour` draws its strip on the shared edge: a block drawn
+// as a ring has one; a block drawn as its one quad (or thin) has none (its area reaches its
+// border), nor has a merged node's fan (its perimeter is the edge).
+bool hasStripAcross(const Quadtree& qt, const std::vector<int8_t>& levels, int neighbour)
 {
-  return neighbour >= 0 && levels[neighbour] >= 0;
+  return neighbour >= 0 && levels[neighbour] >= 0 && qt.blockIsRingAt(neighbour, levels[neighbour]);
 }
 
-// The strip of `block` (drawn at levels[block]) on `side`: a connect's half across.
-void drawStripOf(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, int side, std::vector<uint32_t>& out, EmitScratch& scratch)
+// The strip of `block` on `side`, the block drawn at `level` and that side's edge at
+// `edgeLevel`: a connect's half across. A strip reads no other part of its block's
+// configuration (emitBlockParts), so the caller passes what it already knows.
+void drawStripOf(const Heightfield& hf, const Quadtree& qt, int block, int level, int side,
+  int edgeLevel, std::vector<uint32_t>& out, EmitScratch& scratch)
 {
+  BlockConfig config;
+  config.level = level;
+  config.edgeLevel.fill(level);
+  config.edgeLevel[side] = edgeLevel;
   BlockParts strip;
   strip.side[side] = true;
-  emitBlockParts(hf, qt, block, blockConfigOf(qt, levels, block), strip, out, scratch);
+  emitBlockParts(hf, qt, block, config, strip, out, scratch);
 }
 
-// The main area of a drawn block (the part of Poyart's drawArea before its connects): its
-// inner grid (or cells, or its one quad), with the strips of its west and north sides where
-// no connect joins them. At the DEM's border and beside culled space the edge is at the
-// block's own level: the regular grid that Poyart's main area extends to.
-void drawMainArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, const BlockConfig& config, const std::array<int, 4>& neighbour,
-  std::vector<uint32_t>& out, EmitScratch& scratch)
+// The parts of a drawn block's main area (Poyart's drawArea before its connects): its inner
+// grid (or cells, or its one quad), with the strips of its west and north sides where no
+// connect joins them (its key keeps their edge levels: drawnSidesOf). At the DEM's border
+// and beside culled space the edge is at the block's own level: the regular grid that
+// Poyart's main area extends to. A block without strips has every side in its area.
+BlockParts mainAreaParts(const DrawnSides& key)
 {
   BlockParts parts;
   parts.inner = true;
-  if (qt.blockIsRingAt(block, config.level))
+  for (int side = South; side <= West; ++side)
   {
-    parts.side[West] = !sideDrawnByNeighbour(levels, neighbour[West]);
-    parts.side[North] = !sideDrawnByNeighbour(levels, neighbour[North]);
+    parts.side[side] = (side == West || side == North) && key.config.edgeLevel[side] >= 0;
   }
-  else
-  {
-    parts.side = { true, true, true, true }; // no strips: all of it is area
-  }
-  emitBlockParts(hf, qt, block, config, parts, out, scratch);
+  return parts;
 }
 
-// A connect across `side` (East or South) of `block`: the block's strip on that side, then,
+// A connect across `side` (East or South) of a block is the block's strip on that side and,
 // when a drawn block lies across it, that block's strip on the shared edge. Both strips end
 // on the edge sampled at the coarser of the two levels (edgeLevelOf), which is what keeps
-// each block's triangles, and so its error table, its own.
-void drawConnect(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, const BlockConfig& config, int side, int neighbour, std::vector<uint32_t>& out,
-  EmitScratch& scratch)
+// each block's triangles, and so its error table, its own. The block's own strip is emitted
+// with its main area, in one pass over the block (drawArea); these draw the strip across,
+// with the level and edge level the block's key holds for it.
+void drawConnectAcross(const Heightfield& hf, const Quadtree& qt, const DrawnSides& key, int side,
+  int neighbour, std::vector<uint32_t>& out, EmitScratch& scratch)
 {
-  BlockParts own;
-  own.side[side] = true;
-  emitBlockParts(hf, qt, block, config, own, out, scratch);
-  if (hasStripAcross(levels, neighbour))
+  const std::array<int8_t, 2>& across = key.across[side == East ? 0 : 1];
+  if (across[0] >= 0)
   {
-    drawStripOf(hf, qt, levels, neighbour, (side + 2) % 4, out, scratch);
+    drawStripOf(hf, qt, neighbour, across[0], (side + 2) % 4, across[1], out, scratch);
   }
 }
 
@@ -90,29 +90,31 @@ void forEachBlockAlong(const Quadtree& qt, const QuadtreeNode& node, int side, V
   }
 }
 
-void drawEastConnect(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, const BlockConfig& config, const std::array<int, 4>& neighbour,
-  std::vector<uint32_t>& out, EmitScratch& scratch)
+void drawEastConnect(const Heightfield& hf, const Quadtree& qt, const DrawnSides& key,
+  const std::array<int, 4>& neighbour, std::vector<uint32_t>& out, EmitScratch& scratch)
 {
-  drawConnect(hf, qt, levels, block, config, East, neighbour[East], out, scratch);
+  drawConnectAcross(hf, qt, key, East, neighbour[East], out, scratch);
 }
 
-void drawSouthConnect(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, const BlockConfig& config, const std::array<int, 4>& neighbour,
-  std::vector<uint32_t>& out, EmitScratch& scratch)
+void drawSouthConnect(const Heightfield& hf, const Quadtree& qt, const DrawnSides& key,
+  const std::array<int, 4>& neighbour, std::vector<uint32_t>& out, EmitScratch& scratch)
 {
-  drawConnect(hf, qt, levels, block, config, South, neighbour[South], out, scratch);
+  drawConnectAcross(hf, qt, key, South, neighbour[South], out, scratch);
 }
 
 } // namespace
 
-void drawArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, const BlockConfig& config, std::vector<uint32_t>& out, EmitScratch& scratch)
+void drawArea(const Heightfield& hf, const Quadtree& qt, int block, const DrawnSides& key,
+  std::vector<uint32_t>& out, EmitScratch& scratch)
 {
+  // The block's own triangles in one pass (its rows and columns sampled once): its main
+  // area and its strips of the east and south connects. Then the connects' strips across.
+  BlockParts own = mainAreaParts(key);
+  own.side[East] = own.side[South] = true;
+  emitBlockParts(hf, qt, block, key.config, own, out, scratch);
   const std::array<int, 4> neighbour = qt.blockNeighbours(block);
-  drawMainArea(hf, qt, levels, block, config, neighbour, out, scratch);
-  drawEastConnect(hf, qt, levels, block, config, neighbour, out, scratch);
-  drawSouthConnect(hf, qt, levels, block, config, neighbour, out, scratch);
+  drawEastConnect(hf, qt, key, neighbour, out, scratch);
+  drawSouthConnect(hf, qt, key, neighbour, out, scratch);
 }
 
 DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
@@ -131,11 +133,11 @@ DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, i
   for (int side : { East, South })
   {
     const int nb = neighbour[side];
-    if (hasStripAcross(levels, nb))
+    if (hasStripAcross(qt, levels, nb))
     {
-      const int opposite = (side + 2) % 4;
-      key.across[side == East ? 0 : 1] = { levels[nb],
-        static_cast<int8_t>(edgeLevelOf(qt, levels, nb, levels[nb], opposite, block)) };
+      // The edge level is the block's own on that side: both blocks of an edge answer
+      // edgeLevelOf alike when both are drawn as blocks.
+      key.across[side == East ? 0 : 1] = { levels[nb], static_cast<int8_t>(config.edgeLevel[side]) };
     }
   }
   return key;
@@ -148,9 +150,11 @@ void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector
   for (int side : { East, South })
   {
     forEachBlockAlong(qt, qt.nodes[node], side, [&](int b) {
-      if (hasStripAcross(levels, b))
+      if (hasStripAcross(qt, levels, b))
       {
-        drawStripOf(hf, qt, levels, b, (side + 2) % 4, out, scratch);
+        const int opposite = (side + 2) % 4;
+        drawStripOf(hf, qt, b, levels[b], opposite,
+          edgeLevelOf(qt, levels, b, levels[b], opposite, qt.blockNeighbours(b)[opposite]), out, scratch);
       }
     });
   }
@@ -165,7 +169,7 @@ void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int
   {
     if (levels[b] >= 0)
     {
-      drawArea(hf, qt, levels, b, blockConfigOf(qt, levels, b), out, scratch);
+      drawArea(hf, qt, b, drawnSidesOf(qt, levels, b, blockConfigOf(qt, levels, b)), out, scratch);
     }
   }
   for (int n : merged)

@@ -224,6 +224,33 @@ void Engine::drawNodeSlot(int node, FrameStats& s)
   ++s.blocksRetessellated;
 }
 
+void Engine::queueNodesBeside(int block)
+{
+  // A merged node west or north of the block draws the block's strip on that side in its
+  // connects (Tessellate.h): what the block draws changed, so that node's slot is drawn
+  // again (once, after every block is visited).
+  if (redrawnNodes_.size() == drawnMerged_.size())
+  {
+    return; // every drawn node is drawn this frame already (a frame from scratch)
+  }
+  const Quadtree& qt = terrain_->qt;
+  const std::array<int, 4> neighbour = qt.blockNeighbours(block);
+  for (int side : { West, North })
+  {
+    const int nb = neighbour[side];
+    if (nb >= 0 && levels_[nb] == kCoveredLevel)
+    {
+      const int n = drawnNodeOver(nb);
+      if (n >= 0 && !nodeRedrawn_[n])
+      {
+        nodeRedrawn_[n] = 1;
+        redrawnNodes_.push_back(n);
+        nodesToRedraw_.push_back(n);
+      }
+    }
+  }
+}
+
 int Engine::drawnNodeOver(int block) const
 {
   const Quadtree& qt = terrain_->qt;
@@ -368,28 +395,11 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
     blockScratch_.clear();
     if (cfg.level >= 0)
     {
-      drawArea(t.hf, t.qt, levels_, b, cfg, blockScratch_, emitScratch_);
+      drawArea(t.hf, t.qt, b, sides, blockScratch_, emitScratch_);
       ++s.blocksRetessellated;
     }
     arena_.assign(b, blockScratch_.data(), blockScratch_.size());
-    // A merged node west or north of the block draws the block's strip on that side in its
-    // connects (Tessellate.h): what the block draws changed, so that node's slot is drawn
-    // again (once, after every block is visited).
-    const std::array<int, 4> neighbour = t.qt.blockNeighbours(b);
-    for (int side : { West, North })
-    {
-      const int nb = neighbour[side];
-      if (nb >= 0 && levels_[nb] == kCoveredLevel)
-      {
-        const int n = drawnNodeOver(nb);
-        if (n >= 0 && !nodeRedrawn_[n])
-        {
-          nodeRedrawn_[n] = 1;
-          redrawnNodes_.push_back(n);
-          nodesToRedraw_.push_back(n);
-        }
-      }
-    }
+    queueNodesBeside(b);
   };
   for (int b : nowDrawn_)
   {

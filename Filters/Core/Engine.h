@@ -172,6 +172,9 @@ private:
   void drawNodeSlot(int node, FrameStats& s);
   // The merged node in the arena this frame that covers `block`, or -1.
   int drawnNodeOver(int block) const;
+  // Queues for drawing again the merged nodes west and north of `block`, whose connects
+  // hold its strips on those sides, when `block`'s slot was drawn again.
+  void queueNodesBeside(int block);
   // The merged nodes' part of finishFrame: their slots in the arena and statistics.
   bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
     FrameStats& s);

@@ -30,12 +30,31 @@ bool drawnAsHoleCells(const Quadtree& qt, int block, int level)
   return level > 0 && qt.blockHasNodata[block];
 }
 
+// Where the inner ring of a ring block at `level` runs along `side`: the second sample of
+// the other axis from the side (edgeSamples at the level: the first step in from it, or,
+// from the far side, the last sample before it, which a thin last interval moves in).
+int innerRingAt(const BlockRect& r, int side, int level)
+{
+  switch (side)
+  {
+    case South:
+      return r.j0 + (1 << level);
+    case East:
+      return r.i0 + (((r.i1 - r.i0 - 1) >> level) << level);
+    case North:
+      return r.j0 + (((r.j1 - r.j0 - 1) >> level) << level);
+    default: // West
+      return r.i0 + (1 << level);
+  }
+}
+
 // The two polylines of one side strip (Tessellate.h, sidePolylines), in the block's
 // counter-clockwise direction: the edge samples at the edge level (outer) and the inner
-// ring's samples along that side (inner), or with `cells` (a block with nodata, whose
-// border row along this side is clear of it), the cells' vertices along the row's inner
-// line, and the strip's ends on the block's border (stripEnds).
-void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<int>& R, int side,
+// ring's samples along that side (inner: `along`, the block's samples at its level along
+// the side, at innerRingAt), or with `cells` (a block with nodata, whose border row along
+// this side is clear of it), the cells' vertices along the row's inner line, and the
+// strip's ends on the block's border (stripEnds).
+void sideLines(const BlockRect& r, const std::vector<int>& along, int innerAt, int side,
   int edgeLevel, EmitScratch& scratch, const HoleCells* cells)
 {
   std::vector<int>& edge = scratch.edge;
@@ -43,7 +62,7 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
   std::vector<GridPoint>& inner = scratch.inner;
   outer.clear();
   inner.clear();
-  const std::size_t k = C.size() - 1, L = R.size() - 1;
+  const std::size_t n = along.size() - 1; // intervals along the side
   scratch.stripStart.clear();
   scratch.stripEnd.clear();
   if (cells)
@@ -57,39 +76,48 @@ void sideLines(const BlockRect& r, const std::vector<int>& C, const std::vector<
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
       for (int x : edge)
         outer.push_back({ x, r.j0 });
-      for (std::size_t u = 1; !cells && u < k; ++u)
-        inner.push_back({ C[u], R[1] });
+      for (std::size_t u = 1; !cells && u < n; ++u)
+        inner.push_back({ along[u], innerAt });
       break;
     case East:
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
       for (int y : edge)
         outer.push_back({ r.i1, y });
-      for (std::size_t t = 1; !cells && t < L; ++t)
-        inner.push_back({ C[k - 1], R[t] });
+      for (std::size_t t = 1; !cells && t < n; ++t)
+        inner.push_back({ innerAt, along[t] });
       break;
     case North:
       edgeSamples(r.i0, r.i1, edgeLevel, edge);
       for (auto it = edge.rbegin(); it != edge.rend(); ++it)
         outer.push_back({ *it, r.j1 });
-      for (std::size_t u = k - 1; !cells && u >= 1; --u)
-        inner.push_back({ C[u], R[L - 1] });
+      for (std::size_t u = n - 1; !cells && u >= 1; --u)
+        inner.push_back({ along[u], innerAt });
       break;
     default: // West
       edgeSamples(r.j0, r.j1, edgeLevel, edge);
       for (auto it = edge.rbegin(); it != edge.rend(); ++it)
         outer.push_back({ r.i0, *it });
-      for (std::size_t t = L - 1; !cells && t >= 1; --t)
-        inner.push_back({ C[1], R[t] });
+      for (std::size_t t = n - 1; !cells && t >= 1; --t)
+        inner.push_back({ innerAt, along[t] });
       break;
   }
 }
 
-template <typename Sink>
-void drawSide(Sink& sink, const BlockRect& r, const std::vector<int>& C,
-  const std::vector<int>& R, int side, int edgeLevel, EmitScratch& scratch, const HoleCells* cells)
+// The samples of a block at `level` along `side`'s axis (scratch.cols for south and north,
+// rows for east and west), for a strip drawn without the rest of the block.
+std::vector<int>& alongSide(const BlockRect& r, int side, int level, EmitScratch& scratch)
 {
-  sideLines(r, C, R, side, edgeLevel, scratch, cells);
-  drawSideLines(sink, scratch, side);
+  const bool rows = side == South || side == North;
+  std::vector<int>& along = rows ? scratch.cols : scratch.rows;
+  if (rows)
+  {
+    edgeSamples(r.i0, r.i1, level, along);
+  }
+  else
+  {
+    edgeSamples(r.j0, r.j1, level, along);
+  }
+  return along;
 }
 
 BlockParts partsOf(BlockPart part)
@@ -165,12 +193,21 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     }
     cells = &scratch.cells;
   }
-  std::vector<int>& C = cells ? scratch.cells.cols : scratch.cols;
-  std::vector<int>& R = cells ? scratch.cells.rows : scratch.rows;
+  // The block's samples at its level along each axis where a part reads them: the inner
+  // grid both, a strip those along its side (a connect's strip across is drawn alone).
+  // With cells the strips take their inner lines from the cells.
+  std::vector<int>& C = scratch.cols;
+  std::vector<int>& R = scratch.rows;
   if (!cells)
   {
-    edgeSamples(r.i0, r.i1, config.level, C);
-    edgeSamples(r.j0, r.j1, config.level, R);
+    if (parts.inner || parts.side[South] || parts.side[North])
+    {
+      edgeSamples(r.i0, r.i1, config.level, C);
+    }
+    if (parts.inner || parts.side[East] || parts.side[West])
+    {
+      edgeSamples(r.j0, r.j1, config.level, R);
+    }
     if (parts.inner)
     {
       drawInnerGrid(sink, C, R);
@@ -180,7 +217,9 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   {
     if (parts.side[side] && (!cells || cells->strip[side]))
     {
-      drawSide(sink, r, C, R, side, config.edgeLevel[side], scratch, cells);
+      const std::vector<int>& along = side == South || side == North ? C : R;
+      sideLines(r, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side], scratch, cells);
+      drawSideLines(sink, scratch, side);
     }
   }
 }
@@ -235,9 +274,8 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
   EmitScratch& scratch, const HoleCells* cells)
 {
   const BlockRect r = blockRect(qt, block);
-  edgeSamples(r.i0, r.i1, config.level, scratch.cols);
-  edgeSamples(r.j0, r.j1, config.level, scratch.rows);
-  sideLines(r, scratch.cols, scratch.rows, side, config.edgeLevel[side], scratch, cells);
+  const std::vector<int>& along = alongSide(r, side, config.level, scratch);
+  sideLines(r, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side], scratch, cells);
 }
 
 void emitHoleCellsGrid(const HoleCells& cells, std::vector<GridTriangle>& out, EmitScratch& scratch)

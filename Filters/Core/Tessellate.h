@@ -108,7 +108,8 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
 // scratch.inner the inner ring's samples along that side (the block's own level, one step
 // in from the border), both in the block's counter-clockwise direction. Every strip
 // triangle has its vertices on these two lines, which are one row (South, North) or
-// column (East, West) each. scratch.cols and rows get the block's samples at its level.
+// column (East, West) each. scratch.cols (South, North) or rows (East, West) gets the
+// block's samples at its level along the side.
 // A block with nodata at a level above 0 has strips only on the sides whose border row is
 // clear of nodata (HoleCells.h): `cells` are then its cells at config.level
 // (buildHoleCells, cells.strip[side]), whose vertices on the strip's inner line are the
@@ -207,19 +208,11 @@ using LevelsAround = std::array<int8_t, 5>;
 constexpr int8_t kNoNeighbour = -128;
 LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
-// Poyart's drawArea: appends what a drawn block (levels[block] >= 0, `config` its
-// blockConfigOf) draws in a frame: its main area (inner grid or cells or its one quad, and
-// its west and north strips where nothing drawn lies across them), then drawEastConnect
-// and drawSouthConnect (its east / south strip and the west / north strip of the drawn
-// block across). Over all drawn blocks this is every block's emitBlock(Whole), each
-// triangle once.
-void drawArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int block, const BlockConfig& config, std::vector<uint32_t>& out, EmitScratch& scratch);
-
 // What drawArea's triangles for `block` depend on: its configuration but for the west /
-// north edge levels whose strips a neighbour draws, and the level and edge level of the
-// strips it draws for its east and south neighbours ({-1, -1} where it draws none). Two
-// frames with equal keys draw the block's slot alike (the engine keeps the slot then).
+// north edge levels whose strips a neighbour draws (-1 there), and the level and edge level
+// of the strips it draws for its east and south neighbours ({-1, -1} where it draws none:
+// no drawn block across, or one drawn as its one quad, which has no strip).
+// Two frames with equal keys draw the block's slot alike (the engine keeps the slot then).
 struct DrawnSides
 {
   BlockConfig config;
@@ -232,6 +225,15 @@ struct DrawnSides
 };
 DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
   const BlockConfig& config);
+
+// Poyart's drawArea: appends what a drawn block draws in a frame, from its key (drawnSidesOf
+// of its blockConfigOf): its main area (inner grid or cells or its one quad, and its west
+// and north strips where nothing drawn lies across them), then drawEastConnect and
+// drawSouthConnect (its east / south strip and the west / north strip of the drawn block
+// across). The block's own parts are emitted in one pass; the strips across after. Over
+// all drawn blocks this is every block's emitBlock(Whole), each triangle once.
+void drawArea(const Heightfield& hf, const Quadtree& qt, int block, const DrawnSides& key,
+  std::vector<uint32_t>& out, EmitScratch& scratch);
 
 // Poyart's drawArea for a merged node: its fan (emitMergedNode), then its east and south
 // connects: the west / north strips of the drawn blocks along its east / south side, any
