@@ -446,14 +446,30 @@ const std::vector<uint32_t>& Engine::indices() const
   if (!indicesCurrent_)
   {
     // Block order, then the merged nodes in node order (slot order): only the drawn slots
-    // hold triangles, so only those are visited.
-    indexSlots_ = drawnList_;
+    // hold triangles, so only those are visited. They are put in order by a bit per slot
+    // (node slots all come after block slots) and one pass over its words, which clears
+    // them again: sorting the drawn slots was a third of a from-scratch frame's indices()
+    // at 5 000 slots, and grows as n log n where the pass grows with slots / 64.
+    const int blocks = terrain_->qt.blockCount();
+    slotMarks_.resize((static_cast<std::size_t>(blocks) + terrain_->qt.nodes.size() + 63) / 64, 0);
+    for (int b : drawnList_)
+    {
+      slotMarks_[static_cast<std::size_t>(b) >> 6] |= uint64_t(1) << (b & 63);
+    }
     for (int n : drawnMerged_)
     {
-      indexSlots_.push_back(terrain_->qt.blockCount() + n);
+      const std::size_t k = static_cast<std::size_t>(blocks) + static_cast<std::size_t>(n);
+      slotMarks_[k >> 6] |= uint64_t(1) << (k & 63);
     }
-    // Node slots all come after block slots, so one sort gives both orders.
-    std::sort(indexSlots_.begin(), indexSlots_.end());
+    indexSlots_.clear();
+    for (std::size_t w = 0; w < slotMarks_.size(); ++w)
+    {
+      for (uint64_t bits = slotMarks_[w]; bits != 0; bits &= bits - 1)
+      {
+        indexSlots_.push_back(static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))));
+      }
+      slotMarks_[w] = 0;
+    }
     indices_.clear();
     arena_.appendTriangles(indexSlots_, indices_);
     indicesCurrent_ = true;

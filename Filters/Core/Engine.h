@@ -242,6 +242,7 @@ private:
   EmitScratch emitScratch_; // drawArea / emitMergedNode buffers, reused frame to frame
   mutable std::vector<uint32_t> indices_;
   mutable std::vector<int> indexSlots_; // indices()' slots, in slot order
+  mutable std::vector<uint64_t> slotMarks_; // indices()' bit per slot, all 0 between calls
   mutable bool indicesCurrent_ = true;
   FrameStats stats_;
   std::string lastError_;
