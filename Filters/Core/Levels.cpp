@@ -3,17 +3,6 @@
 namespace gmm
 {
 
-void edgeSamples(int first, int last, int level, std::vector<int>& out)
-{
-  out.clear();
-  const long long step = 1LL << level;
-  for (long long s = first; s < last; s += step)
-  {
-    out.push_back(static_cast<int>(s));
-  }
-  out.push_back(last);
-}
-
 int edgeSampleCount(int first, int last, int level)
 {
   const long long step = 1LL << level;

@@ -88,7 +88,18 @@ inline int nextValidLevel(int widthQuads, int heightQuads, int m)
 }
 
 // Samples along an edge [first, last] at level m: first, first + 2^m, ... (< last), last.
-void edgeSamples(int first, int last, int level, std::vector<int>& out);
+// Inline: a frame drawn from scratch at small blocks asks for tens of thousands of these
+// short lists.
+inline void edgeSamples(int first, int last, int level, std::vector<int>& out)
+{
+  out.clear();
+  const long long step = 1LL << level;
+  for (long long s = first; s < last; s += step)
+  {
+    out.push_back(static_cast<int>(s));
+  }
+  out.push_back(last);
+}
 
 // Number of samples edgeSamples would produce.
 int edgeSampleCount(int first, int last, int level);
