@@ -50,10 +50,8 @@ BlockParts mainAreaParts(const DrawnSides& key)
 {
   BlockParts parts;
   parts.inner = true;
-  for (int side = South; side <= West; ++side)
-  {
-    parts.side[side] = (side == West || side == North) && key.config.edgeLevel[side] >= 0;
-  }
+  parts.side[West] = key.config.edgeLevel[West] >= 0;
+  parts.side[North] = key.config.edgeLevel[North] >= 0;
   return parts;
 }
 

@@ -452,14 +452,14 @@ const std::vector<uint32_t>& Engine::indices() const
     // at 5 000 slots, and grows as n log n where the pass grows with slots / 64.
     const int blocks = terrain_->qt.blockCount();
     slotMarks_.resize((static_cast<std::size_t>(blocks) + terrain_->qt.nodes.size() + 63) / 64, 0);
+    auto mark = [this](std::size_t slot) { slotMarks_[slot >> 6] |= uint64_t(1) << (slot & 63); };
     for (int b : drawnList_)
     {
-      slotMarks_[static_cast<std::size_t>(b) >> 6] |= uint64_t(1) << (b & 63);
+      mark(static_cast<std::size_t>(b));
     }
     for (int n : drawnMerged_)
     {
-      const std::size_t k = static_cast<std::size_t>(blocks) + static_cast<std::size_t>(n);
-      slotMarks_[k >> 6] |= uint64_t(1) << (k & 63);
+      mark(static_cast<std::size_t>(blocks) + static_cast<std::size_t>(n));
     }
     indexSlots_.clear();
     for (std::size_t w = 0; w < slotMarks_.size(); ++w)
