@@ -236,6 +236,27 @@ bool AcceptBlockSize(vtkObject* self, int quads, int& current)
 }
 
 //------------------------------------------------------------------------------
+bool AcceptTriangleBudget(vtkObject* self, long long budget, std::size_t& current)
+{
+  if (budget < 0)
+  {
+    vtkErrorWithObjectMacro(
+      self, "TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << current);
+    return false;
+  }
+  return AcceptSetting(static_cast<std::size_t>(budget), current);
+}
+
+void PrintFrameSettings(std::ostream& os, vtkIndent indent, const gmm::FrameSettings& settings)
+{
+  os << indent << "PixelError: " << settings.pixelError << "\n";
+  os << indent << "TriangleBudget: " << settings.triangleBudget << "\n";
+  os << indent << "HeightScale: " << settings.heightScale << "\n";
+  os << indent << "Geomorphing: " << settings.geomorphing << "\n";
+  os << indent << "GeomorphRange: " << settings.geomorphRange << "\n";
+  os << indent << "GeomorphMerges: " << settings.geomorphMerges << "\n";
+}
+
 bool AcceptHeightScale(vtkObject* self, double scale, double& current)
 {
   const std::string err = gmm::validateHeightScale(scale);

@@ -13,9 +13,14 @@
 
 #include "geomipmapFiltersModule.h" // For export macro
 
+#include "Frame.h"       // gmm::FrameSettings
 #include "Heightfield.h" // gmm::Heightfield
 #include "View.h"        // gmm::View
 
+#include "vtkIndent.h"
+
+#include <cstddef>
+#include <ostream>
 #include <string>
 
 class vtkCamera;
@@ -81,6 +86,34 @@ GEOMIPMAPFILTERS_EXPORT bool AcceptBlockSize(vtkObject* self, int quads, int& cu
  * `current` and true returned when it differs; anything else is refused with an error.
  */
 GEOMIPMAPFILTERS_EXPORT bool AcceptHeightScale(vtkObject* self, double scale, double& current);
+
+/**
+ * The SetTriangleBudget rule of the mapper and the filter: a budget >= 0 (0: none) is stored
+ * in `current` and true returned when it differs; a negative one is refused with an error.
+ */
+GEOMIPMAPFILTERS_EXPORT bool AcceptTriangleBudget(vtkObject* self, long long budget, std::size_t& current);
+
+/**
+ * A setting without a rule of its own (any value is meaningful): stored in `current`, true
+ * when it differs.
+ */
+template <typename T>
+bool AcceptSetting(T value, T& current)
+{
+  if (value == current)
+  {
+    return false;
+  }
+  current = value;
+  return true;
+}
+
+/**
+ * PrintSelf's lines for the LOD settings the mapper and the filter share, under their VTK
+ * names.
+ */
+GEOMIPMAPFILTERS_EXPORT void PrintFrameSettings(
+  std::ostream& os, vtkIndent indent, const gmm::FrameSettings& settings);
 
 /**
  * Unit normal at sample (i, j) of the surface z0 + heightScale * h from full-resolution

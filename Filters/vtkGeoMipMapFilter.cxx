@@ -20,8 +20,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTypeInt64Array.h"
 
-#include "Engine.h"
-#include "Morph.h"
+#include "Frame.h"
 #include "RayCast.h"
 
 #include <algorithm>
@@ -32,11 +31,11 @@
 
 struct vtkGeoMipMapFilter::Internals
 {
-  gmm::Engine Engine;
-  // The terrain the engine uses (shared with every other consumer of the input image).
+  // The LOD settings shared with vtkGeoMipMapMapper, and the frame recipe that runs them.
+  gmm::FrameSettings Settings;
+  gmm::FrameDriver Driver;
+  // The terrain the driver uses (shared with every other consumer of the input image).
   vtkSmartPointer<vtkGeoMipMapTerrain> Terrain;
-  gmm::MorphFrame Morph; // this frame's geomorph factors (all 0 when not morphing)
-  gmm::MorphCache MorphCache;
 };
 
 vtkStandardNewMacro(vtkGeoMipMapFilter);
@@ -46,7 +45,6 @@ vtkCxxSetObjectMacro(vtkGeoMipMapFilter, ModelMatrix, vtkMatrix4x4);
 //------------------------------------------------------------------------------
 vtkGeoMipMapFilter::vtkGeoMipMapFilter()
   : BlockSize(gmm::kDefaultBlockQuads)
-  , GeomorphRange(gmm::kDefaultMorphRange)
   , Internal(new Internals)
 {
 }
@@ -99,21 +97,21 @@ int vtkGeoMipMapFilter::RequestData(
   if (!terrain)
   {
     in.Terrain = nullptr;
-    in.Engine.setTerrain(nullptr);
+    in.Driver.setTerrain(nullptr);
     vtkErrorMacro("Cannot use the input image: " << err);
     return 0;
   }
   if (terrain != in.Terrain)
   {
     in.Terrain = terrain;
-    in.Engine.setTerrain(terrain->GetTerrain());
+    in.Driver.setTerrain(terrain->GetTerrain());
   }
-  in.Engine.setHeightScale(this->HeightScale);
 
-  const gmm::FrameStats* stats = nullptr;
+  // The frame (gmm::FrameDriver), as the mapper runs it; view-independent without a camera.
+  const gmm::Frame* frame = nullptr;
   if (this->MaximumGeometricError > 0.0 || !this->Camera)
   {
-    stats = &in.Engine.updateForError(this->MaximumGeometricError);
+    frame = &in.Driver.updateForError(this->MaximumGeometricError, in.Settings);
   }
   else
   {
@@ -125,36 +123,22 @@ int vtkGeoMipMapFilter::RequestData(
       vtkErrorMacro("Cannot use the camera: " << err);
       return 0;
     }
-    // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
-    in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
-    in.Engine.setMergeOnPath(this->GeomorphMerges);
-    stats = &in.Engine.update(
-      view, this->PixelError, static_cast<std::size_t>(this->TriangleBudget), this->BudgetStartTau);
+    frame = &in.Driver.update(view, in.Settings);
   }
-  // Geomorphing needs a camera's projection factors: the view-independent mode never morphs.
-  const bool morph = this->Geomorphing && !(this->MaximumGeometricError > 0.0 || !this->Camera) &&
-    in.Engine.lastError().empty();
-  if (morph)
+  if (!frame->ok())
   {
-    gmm::computeMorph(in.Engine.heightfield(), in.Engine.quadtree(), in.Engine.levels(),
-      in.Engine.pixelFactors(), gmm::morphErrorBudget(*stats, this->PixelError), in.MorphCache, in.Morph,
-      in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs(), &in.Engine.errorTable());
-  }
-  else if (!in.Engine.empty())
-  {
-    gmm::clearMorph(in.Engine.quadtree(), in.Morph);
-  }
-  if (!in.Engine.lastError().empty())
-  {
-    vtkErrorMacro("LOD update failed: " << in.Engine.lastError());
+    vtkErrorMacro("LOD update failed: " << frame->error);
     return 0;
   }
+  const gmm::FrameStats* stats = &frame->stats;
+  const gmm::Engine& engine = in.Driver.engine();
+  const double heightScale = in.Settings.heightScale;
 
   // Compact: only the samples the triangles use, in sample order. Sorted rather than
   // looked up in a table over all samples, so that the work and memory follow the
   // triangles, not the DEM (a table of ids took 2 GiB per update at 16385^2).
-  const gmm::Heightfield& hf = in.Engine.heightfield();
-  const std::vector<uint32_t>& tris = in.Engine.indices();
+  const gmm::Heightfield& hf = engine.heightfield();
+  const std::vector<uint32_t>& tris = engine.indices();
   std::vector<uint32_t> used(tris);
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
@@ -190,13 +174,13 @@ int vtkGeoMipMapFilter::RequestData(
   {
     const int i = static_cast<int>(used[p] % static_cast<uint32_t>(hf.nx));
     const int j = static_cast<int>(used[p] / static_cast<uint32_t>(hf.nx));
-    const double z = morph
-      ? gmm::morphedHeight(hf, in.Engine.quadtree(), in.Engine.levels(), in.Morph, i, j)
+    const double z = frame->morphed
+      ? gmm::morphedHeight(hf, engine.quadtree(), engine.levels(), in.Driver.morph(), i, j)
       : static_cast<double>(hf.heights()[used[p]]);
-    xyz->SetTypedTuple(p,
-      std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + this->HeightScale * z }.data());
+    xyz->SetTypedTuple(
+      p, std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + heightScale * z }.data());
     elevation->SetValue(p, static_cast<float>(z));
-    vtkGeoMipMapConversion::SampleNormal(hf, i, j, this->HeightScale, normals->GetPointer(3 * p));
+    vtkGeoMipMapConversion::SampleNormal(hf, i, j, heightScale, normals->GetPointer(3 * p));
   }
   vtkNew<vtkPoints> points;
   points->SetData(xyz);
@@ -225,8 +209,7 @@ int vtkGeoMipMapFilter::RequestData(
   addInt("CulledBlocks", stats->culledBlocks);
   // The bound of what is output: the morphed surface's when morphing (still <= PixelError, or
   // a budgeted frame's own certified error: gmm::morphErrorBudget).
-  addDouble("MaximumScreenSpaceError",
-    morph ? std::max(stats->maxScreenError, in.Morph.maxBoundPixels) : stats->maxScreenError);
+  addDouble("MaximumScreenSpaceError", stats->maxScreenError);
   addDouble("MaximumGeometricError", stats->maxGeometricError);
   return 1;
 }
@@ -249,7 +232,7 @@ double vtkGeoMipMapFilter::GetHeightAt(double x, double y)
     vtkErrorMacro("Cannot use the input image: " << err);
     return std::numeric_limits<double>::quiet_NaN();
   }
-  return gmm::heightAt(terrain->GetTerrain()->hf, x, y, this->HeightScale);
+  return gmm::heightAt(terrain->GetTerrain()->hf, x, y, this->Internal->Settings.heightScale);
 }
 
 //------------------------------------------------------------------------------
@@ -262,45 +245,91 @@ void vtkGeoMipMapFilter::SetBlockSize(int quads)
 }
 
 //------------------------------------------------------------------------------
+// The LOD settings: stored in the FrameSettings shared with vtkGeoMipMapMapper, by its rules
+// (vtkGeoMipMapConversion::Accept*).
 void vtkGeoMipMapFilter::SetHeightScale(double scale)
 {
-  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->HeightScale))
+  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->Internal->Settings.heightScale))
   {
     this->Modified();
   }
 }
+double vtkGeoMipMapFilter::GetHeightScale()
+{
+  return this->Internal->Settings.heightScale;
+}
 
-//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetTriangleBudget(vtkIdType budget)
 {
-  if (budget < 0)
+  if (vtkGeoMipMapConversion::AcceptTriangleBudget(this, budget, this->Internal->Settings.triangleBudget))
   {
-    vtkErrorMacro("TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << this->TriangleBudget);
-    return;
-  }
-  if (budget != this->TriangleBudget)
-  {
-    this->TriangleBudget = budget;
     this->Modified();
   }
 }
+vtkIdType vtkGeoMipMapFilter::GetTriangleBudget()
+{
+  return static_cast<vtkIdType>(this->Internal->Settings.triangleBudget);
+}
 
-//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetBudgetStartTau(double tau)
 {
-  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->BudgetStartTau, "BudgetStartTau"))
+  if (vtkGeoMipMapConversion::AcceptPixelError(
+        this, tau, this->Internal->Settings.budgetStartTau, "BudgetStartTau"))
   {
     this->Modified();
   }
 }
+double vtkGeoMipMapFilter::GetBudgetStartTau()
+{
+  return this->Internal->Settings.budgetStartTau;
+}
 
-//------------------------------------------------------------------------------
 void vtkGeoMipMapFilter::SetPixelError(double tau)
 {
-  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
+  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->Internal->Settings.pixelError))
   {
     this->Modified();
   }
+}
+double vtkGeoMipMapFilter::GetPixelError()
+{
+  return this->Internal->Settings.pixelError;
+}
+
+void vtkGeoMipMapFilter::SetGeomorphing(bool on)
+{
+  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphing))
+  {
+    this->Modified();
+  }
+}
+bool vtkGeoMipMapFilter::GetGeomorphing()
+{
+  return this->Internal->Settings.geomorphing;
+}
+
+void vtkGeoMipMapFilter::SetGeomorphRange(double range)
+{
+  if (vtkGeoMipMapConversion::AcceptSetting(range, this->Internal->Settings.geomorphRange))
+  {
+    this->Modified();
+  }
+}
+double vtkGeoMipMapFilter::GetGeomorphRange()
+{
+  return this->Internal->Settings.geomorphRange;
+}
+
+void vtkGeoMipMapFilter::SetGeomorphMerges(bool on)
+{
+  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphMerges))
+  {
+    this->Modified();
+  }
+}
+bool vtkGeoMipMapFilter::GetGeomorphMerges()
+{
+  return this->Internal->Settings.geomorphMerges;
 }
 
 //------------------------------------------------------------------------------
@@ -310,17 +339,12 @@ void vtkGeoMipMapFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Camera: " << this->Camera << "\n";
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]
      << "\n";
-  os << indent << "PixelError: " << this->PixelError << "\n";
-  os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
-  os << indent << "BudgetStartTau: " << this->BudgetStartTau << "\n";
+  vtkGeoMipMapConversion::PrintFrameSettings(os, indent, this->Internal->Settings);
+  os << indent << "BudgetStartTau: " << this->Internal->Settings.budgetStartTau << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "TableCache: " << this->TableCache << "\n";
   os << indent << "TableCacheDirectory: "
      << (this->TableCacheDirectory ? this->TableCacheDirectory : "(default)") << "\n";
   os << indent << "MaximumGeometricError: " << this->MaximumGeometricError << "\n";
-  os << indent << "HeightScale: " << this->HeightScale << "\n";
-  os << indent << "Geomorphing: " << this->Geomorphing << "\n";
-  os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";
-  os << indent << "GeomorphMerges: " << this->GeomorphMerges << "\n";
   os << indent << "ModelMatrix: " << this->ModelMatrix << "\n";
 }

@@ -71,7 +71,7 @@ public:
    * (as vtkGeoMipMapMapper::SetPixelError).
    */
   void SetPixelError(double tau);
-  vtkGetMacro(PixelError, double);
+  double GetPixelError();
   ///@}
 
   ///@{
@@ -81,7 +81,7 @@ public:
    * triangles and PixelError. Negative values are rejected with an error.
    */
   void SetTriangleBudget(vtkIdType budget);
-  vtkGetMacro(TriangleBudget, vtkIdType);
+  vtkIdType GetTriangleBudget();
   ///@}
 
   ///@{
@@ -92,7 +92,7 @@ public:
    * Values that are not finite and >= 0 are refused with an error.
    */
   void SetBudgetStartTau(double tau);
-  vtkGetMacro(BudgetStartTau, double);
+  double GetBudgetStartTau();
   ///@}
 
   ///@{
@@ -138,7 +138,7 @@ public:
    * rebuild the error tables.
    */
   void SetHeightScale(double scale);
-  vtkGetMacro(HeightScale, double);
+  double GetHeightScale();
   ///@}
 
   ///@{
@@ -159,8 +159,8 @@ public:
    * (see Documentation/design.md, "Geomorphing"). Points keep
    * their x, y; only heights move. Ignored in view-independent mode.
    */
-  vtkSetMacro(Geomorphing, bool);
-  vtkGetMacro(Geomorphing, bool);
+  void SetGeomorphing(bool on);
+  bool GetGeomorphing();
   vtkBooleanMacro(Geomorphing, bool);
   ///@}
 
@@ -176,8 +176,8 @@ public:
    * cameras of earlier Updates of this filter (the rise limit), not on the camera alone.
    * See Documentation/design.md, "Geomorphing".
    */
-  vtkSetMacro(GeomorphRange, double);
-  vtkGetMacro(GeomorphRange, double);
+  void SetGeomorphRange(double range);
+  double GetGeomorphRange();
   ///@}
 
   ///@{
@@ -188,8 +188,8 @@ public:
    * geomorphing path, so that a merge or a split does not skip the path's levels. Costly in
    * wide views of large DEMs.
    */
-  vtkSetMacro(GeomorphMerges, bool);
-  vtkGetMacro(GeomorphMerges, bool);
+  void SetGeomorphMerges(bool on);
+  bool GetGeomorphMerges();
   vtkBooleanMacro(GeomorphMerges, bool);
   ///@}
 
@@ -212,18 +212,14 @@ protected:
 
   vtkCamera* Camera = nullptr;
   vtkMatrix4x4* ModelMatrix = nullptr;
-  double HeightScale = 1.0;
   int ViewportSize[2] = { 1280, 720 };
-  double PixelError = 1.0;
-  vtkIdType TriangleBudget = 0;
-  double BudgetStartTau = 0.0;
+  // The LOD settings shared with vtkGeoMipMapMapper (PixelError, TriangleBudget,
+  // BudgetStartTau, HeightScale, Geomorphing, GeomorphRange, GeomorphMerges) are one
+  // gmm::FrameSettings in the internals.
   int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;
   double MaximumGeometricError = 0.0;
-  bool Geomorphing = true;
-  double GeomorphRange; // gmm::kDefaultMorphRange
-  bool GeomorphMerges = false;
 
 private:
   vtkGeoMipMapFilter(const vtkGeoMipMapFilter&) = delete;

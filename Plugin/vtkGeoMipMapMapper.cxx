@@ -43,7 +43,7 @@
 #include "BudgetController.h"
 #include "DrawOrder.h"
 #include "Engine.h"
-#include "Morph.h"
+#include "Frame.h"
 #include "RayCast.h"
 #include "VertexPitch.h"
 
@@ -70,7 +70,11 @@ std::atomic<bool> GlobalRetainHeapOnSoftwareRenderer{ true };
 
 struct vtkGeoMipMapMapper::Internals
 {
-  gmm::Engine Engine;
+  // The LOD settings shared with vtkGeoMipMapFilter, and the frame recipe that runs them.
+  gmm::FrameSettings Settings;
+  gmm::FrameDriver Driver;
+  const gmm::Engine& Engine() const { return this->Driver.engine(); }
+  const gmm::FrameStats& Stats() const { return this->Driver.frame().stats; }
   vtkSmartPointer<vtkGeoMipMapTerrain> Terrain;
 
   // What VTK's vertex-buffer machinery sees: one vertex with a normal (and texture
@@ -80,9 +84,7 @@ struct vtkGeoMipMapMapper::Internals
   // GPU data, all in the context of Window.
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
   vtkGeoMipMapGPUTerrain GPU;
-  // Geomorphing: this frame's factors (Morph.h) and their texture; Morphing while drawn so.
-  gmm::MorphCache MorphCache;
-  gmm::MorphFrame Morph;
+  // Geomorphing: the texture of this frame's factors; Morphing while drawn so.
   vtkGeoMipMapMorphTexture MorphTexture;
   bool Morphing = false;
   std::string ReportedMorphError;
@@ -96,13 +98,8 @@ struct vtkGeoMipMapMapper::Internals
   vtkNew<vtkMatrix4x4> AnchorShift;
   vtkNew<vtkMatrix4x4> Temp;
 
-  // The engine holds a selection of the current terrain (what FreezeLevelOfDetail keeps).
-  bool HasSelection = false;
-
   // FollowAllocatedRenderTime: this machine's cost per frame, learnt from timed frames.
   gmm::BudgetController Controller;
-  // Where the next budgeted frame's search starts: the last budgeted frame's tau (0: cold).
-  double BudgetStartTau = 0.0;
   // FrontToBack: the drawn blocks nearest first, and their slots for glMultiDrawElements.
   std::vector<int> Order;
   std::vector<GLsizei> Counts;
@@ -131,9 +128,10 @@ vtkStandardNewMacro(vtkGeoMipMapMapper);
 //------------------------------------------------------------------------------
 vtkGeoMipMapMapper::vtkGeoMipMapMapper()
   : BlockSize(gmm::kDefaultBlockQuads)
-  , GeomorphRange(gmm::kDefaultMorphRange)
   , Internal(new Internals)
 {
+  // A renderer flying a camera starts each budgeted frame's search at the last one's tau.
+  this->Internal->Settings.budgetWarmStart = true;
   vtkNew<vtkPoints> p;
   p->InsertNextPoint(0.0, 0.0, 0.0);
   vtkNew<vtkFloatArray> n;
@@ -197,53 +195,66 @@ vtkImageData* vtkGeoMipMapMapper::GetDrapeImage()
 }
 
 //------------------------------------------------------------------------------
+// The LOD settings: stored in the FrameSettings shared with vtkGeoMipMapFilter, by its rules
+// (vtkGeoMipMapConversion::Accept*); a change needs new indices, not new buffers.
 void vtkGeoMipMapMapper::SetPixelError(double tau)
 {
-  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->PixelError))
+  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->Internal->Settings.pixelError))
   {
     this->ModifiedIndicesOnly();
   }
+}
+double vtkGeoMipMapMapper::GetPixelError()
+{
+  return this->Internal->Settings.pixelError;
 }
 
 void vtkGeoMipMapMapper::SetGeomorphing(bool on)
 {
-  if (on != this->Geomorphing)
+  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphing))
   {
-    this->Geomorphing = on;
     this->ModifiedIndicesOnly();
   }
+}
+bool vtkGeoMipMapMapper::GetGeomorphing()
+{
+  return this->Internal->Settings.geomorphing;
 }
 
 void vtkGeoMipMapMapper::SetGeomorphRange(double range)
 {
-  if (range != this->GeomorphRange)
+  if (vtkGeoMipMapConversion::AcceptSetting(range, this->Internal->Settings.geomorphRange))
   {
-    this->GeomorphRange = range;
     this->ModifiedIndicesOnly();
   }
+}
+double vtkGeoMipMapMapper::GetGeomorphRange()
+{
+  return this->Internal->Settings.geomorphRange;
 }
 
 void vtkGeoMipMapMapper::SetGeomorphMerges(bool on)
 {
-  if (on != this->GeomorphMerges)
+  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphMerges))
   {
-    this->GeomorphMerges = on;
     this->ModifiedIndicesOnly();
   }
+}
+bool vtkGeoMipMapMapper::GetGeomorphMerges()
+{
+  return this->Internal->Settings.geomorphMerges;
 }
 
 void vtkGeoMipMapMapper::SetTriangleBudget(vtkIdType budget)
 {
-  if (budget < 0)
+  if (vtkGeoMipMapConversion::AcceptTriangleBudget(this, budget, this->Internal->Settings.triangleBudget))
   {
-    vtkErrorMacro("TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << this->TriangleBudget);
-    return;
-  }
-  if (budget != this->TriangleBudget)
-  {
-    this->TriangleBudget = budget;
     this->ModifiedIndicesOnly();
   }
+}
+vtkIdType vtkGeoMipMapMapper::GetTriangleBudget()
+{
+  return static_cast<vtkIdType>(this->Internal->Settings.triangleBudget);
 }
 
 void vtkGeoMipMapMapper::SetFollowAllocatedRenderTime(bool follow)
@@ -259,7 +270,7 @@ void vtkGeoMipMapMapper::SetFollowAllocatedRenderTime(bool follow)
 std::size_t vtkGeoMipMapMapper::FrameTriangleBudget(vtkRenderer* ren, vtkActor* act, bool& interactive)
 {
   interactive = false;
-  const std::size_t fixed = static_cast<std::size_t>(this->TriangleBudget);
+  const std::size_t fixed = this->Internal->Settings.triangleBudget;
   vtkRenderWindow* win = ren->GetRenderWindow();
   if (!this->FollowAllocatedRenderTime || !win)
   {
@@ -318,58 +329,64 @@ void vtkGeoMipMapMapper::SetBlockSize(int quads)
 
 void vtkGeoMipMapMapper::SetHeightScale(double scale)
 {
-  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->HeightScale))
+  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->Internal->Settings.heightScale))
   {
     this->ModifiedIndicesOnly();
   }
+}
+double vtkGeoMipMapMapper::GetHeightScale()
+{
+  return this->Internal->Settings.heightScale;
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkGeoMipMapMapper::GetNumberOfRenderedTriangles() const
 {
-  const auto& stats = this->Internal->Engine.stats();
-  return this->LastFrameDrawn ? static_cast<vtkIdType>(stats.triangles) : 0;
+  return this->LastFrameDrawn ? static_cast<vtkIdType>(this->Internal->Stats().triangles) : 0;
 }
 int vtkGeoMipMapMapper::GetNumberOfVisibleBlocks() const
 {
-  return this->LastFrameDrawn ? this->Internal->Engine.stats().visibleBlocks : 0;
+  return this->LastFrameDrawn ? this->Internal->Stats().visibleBlocks : 0;
 }
 int vtkGeoMipMapMapper::GetNumberOfCulledBlocks() const
 {
-  return this->LastFrameDrawn ? this->Internal->Engine.stats().culledBlocks : 0;
+  return this->LastFrameDrawn ? this->Internal->Stats().culledBlocks : 0;
 }
 double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
 {
-  // While morphing, the bound of the morphed surface (Morph.h), still <= PixelError (or a
-  // budgeted frame's own certified error: gmm::morphErrorBudget).
+  // The frame's bound includes the morphed surface's (still <= PixelError, or a budgeted
+  // frame's own certified error); the selection's own when the factors could not be drawn.
   const Internals& in = *this->Internal;
-  return this->LastFrameDrawn
-    ? std::max(in.Engine.stats().maxScreenError, in.Morphing ? in.Morph.maxBoundPixels : 0.0)
-    : 0.0;
+  if (!this->LastFrameDrawn)
+  {
+    return 0.0;
+  }
+  const gmm::Frame& f = in.Driver.frame();
+  return f.morphed && !in.Morphing ? f.selectionScreenError : f.stats.maxScreenError;
 }
 double vtkGeoMipMapMapper::GetMaximumGeometricError() const
 {
-  return this->LastFrameDrawn ? this->Internal->Engine.stats().maxGeometricError : 0.0;
+  return this->LastFrameDrawn ? this->Internal->Stats().maxGeometricError : 0.0;
 }
 vtkIdType vtkGeoMipMapMapper::GetTriangleBudgetInForce() const
 {
-  return this->LastFrameDrawn ? static_cast<vtkIdType>(this->Internal->Engine.stats().triangleBudget) : 0;
+  return this->LastFrameDrawn ? static_cast<vtkIdType>(this->Internal->Stats().triangleBudget) : 0;
 }
 bool vtkGeoMipMapMapper::GetTriangleBudgetReached() const
 {
-  return this->LastFrameDrawn && this->Internal->Engine.stats().budgetReached;
+  return this->LastFrameDrawn && this->Internal->Stats().budgetReached;
 }
 double vtkGeoMipMapMapper::GetLastBudgetStartTau() const
 {
-  return this->LastFrameDrawn ? this->Internal->Engine.stats().budgetStartTau : 0.0;
+  return this->LastFrameDrawn ? this->Internal->Stats().budgetStartTau : 0.0;
 }
 bool vtkGeoMipMapMapper::GetOverTriangleBudget() const
 {
-  return this->LastFrameDrawn && this->Internal->Engine.stats().overBudget;
+  return this->LastFrameDrawn && this->Internal->Stats().overBudget;
 }
 bool vtkGeoMipMapMapper::GetIndicesReused() const
 {
-  return this->LastFrameDrawn && (this->LastFrameFrozen || this->Internal->Engine.stats().reused);
+  return this->LastFrameDrawn && (this->LastFrameFrozen || this->Internal->Stats().reused);
 }
 
 bool vtkGeoMipMapMapper::GetHeightsShared() const
@@ -424,23 +441,20 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
   if (!terrain)
   {
     in.Terrain = nullptr;
-    in.Engine.setTerrain(nullptr);
-    in.HasSelection = false;
-    in.BudgetStartTau = 0.0;
+    in.Driver.setTerrain(nullptr);
     vtkErrorMacro("Cannot use the input image: " << err);
     return false;
   }
   if (terrain != in.Terrain)
   {
+    // A frozen selection and the budget's warm start belong to the old terrain: the driver
+    // starts afresh.
     in.Terrain = terrain;
-    in.Engine.setTerrain(terrain->GetTerrain());
-    in.HasSelection = false; // a frozen selection belongs to the old terrain
-    in.BudgetStartTau = 0.0; // a tau of the old terrain's
+    in.Driver.setTerrain(terrain->GetTerrain());
     this->LastTerrainBuildTime = terrain->GetBuildTime();
     this->LastTablesFromCache = terrain->GetTableCacheReport().hit;
     this->IndicesDirty = true;
   }
-  in.Engine.setHeightScale(this->HeightScale);
   return true;
 }
 
@@ -481,8 +495,8 @@ void vtkGeoMipMapMapper::ComputeBounds()
   }
   std::copy(in.ValidXY, in.ValidXY + 4, this->Bounds);
   const gmm::Box& root = t.qt.nodes[0].box;
-  this->Bounds[4] = t.hf.z0 + this->HeightScale * root.lo.z;
-  this->Bounds[5] = t.hf.z0 + this->HeightScale * root.hi.z;
+  this->Bounds[4] = t.hf.z0 + this->Internal->Settings.heightScale * root.lo.z;
+  this->Bounds[5] = t.hf.z0 + this->Internal->Settings.heightScale * root.hi.z;
 }
 
 //------------------------------------------------------------------------------
@@ -498,7 +512,7 @@ double vtkGeoMipMapMapper::GetHeightAt(double x, double y)
   {
     return std::numeric_limits<double>::quiet_NaN();
   }
-  return gmm::heightAt(this->Internal->Terrain->GetTerrain()->hf, x, y, this->HeightScale);
+  return gmm::heightAt(this->Internal->Terrain->GetTerrain()->hf, x, y, this->Internal->Settings.heightScale);
 }
 
 bool vtkGeoMipMapMapper::IntersectWithLine(const double p1[3], const double p2[3], double& t,
@@ -511,7 +525,7 @@ bool vtkGeoMipMapMapper::IntersectWithLine(const double p1[3], const double p2[3
   }
   const gmm::Terrain& terrain = *this->Internal->Terrain->GetTerrain();
   const gmm::SurfaceHit hit = gmm::intersectSegment(terrain, glm::dvec3(p1[0], p1[1], p1[2]),
-    glm::dvec3(p2[0], p2[1], p2[2]), this->HeightScale);
+    glm::dvec3(p2[0], p2[1], p2[2]), this->Internal->Settings.heightScale);
   if (!hit.hit)
   {
     return false;
@@ -593,7 +607,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("No input image.");
     return;
   }
-  if (!this->UpdateTerrain(image) || in.Engine.empty())
+  if (!this->UpdateTerrain(image) || in.Engine().empty())
   {
     return;
   }
@@ -609,28 +623,22 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro("Cannot use the camera: " << err);
     return;
   }
-  // A frozen LOD keeps the engine's last selection (indices and statistics) as it is.
-  this->LastFrameFrozen = this->FreezeLevelOfDetail && in.HasSelection;
-  if (!this->LastFrameFrozen)
+  // The frame (gmm::FrameDriver): selection, triangles, geomorph factors and bound. A frozen
+  // LOD keeps the last selection (indices and statistics) as it is. LastUpdateTime counts
+  // it all: a frame whose blocks all change configuration spends more on geomorphing's
+  // part errors than on the selection.
+  gmm::FrameSettings settings = in.Settings;
+  settings.triangleBudget = budget;
+  this->LastFrameFrozen = this->FreezeLevelOfDetail && in.Driver.hasSelection();
+  const auto lodStart = Clock::now();
+  const gmm::Frame& frame = this->LastFrameFrozen ? in.Driver.keep(settings) : in.Driver.update(view, settings);
+  this->LastUpdateTime = this->LastFrameFrozen ? 0.0 : SecondsSince(lodStart);
+  if (!frame.ok())
   {
-    const auto start = Clock::now();
-    // Geomorphing's level path (MorphRamp.h; none for a range that is not finite and > 1).
-    in.Engine.setMorphRange(this->Geomorphing ? this->GeomorphRange : 0.0);
-    in.Engine.setMergeOnPath(this->GeomorphMerges);
-    in.Engine.update(view, this->PixelError, budget, in.BudgetStartTau); // no budget: ignored
-    this->LastUpdateTime = SecondsSince(start);
-    if (budget)
-    {
-      in.BudgetStartTau = in.Engine.stats().budgetTau;
-    }
-    in.HasSelection = in.Engine.lastError().empty();
-    if (!in.HasSelection)
-    {
-      vtkErrorMacro("LOD update failed: " << in.Engine.lastError());
-      return;
-    }
+    vtkErrorMacro("LOD update failed: " << frame.error);
+    return;
   }
-  const gmm::FrameStats& stats = in.Engine.stats();
+  const gmm::FrameStats& stats = frame.stats;
   this->LastFrameDrawn = true;
   this->IndicesDirty = this->IndicesDirty || !this->GetIndicesReused();
   if (stats.triangles == 0)
@@ -644,7 +652,7 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
 
   // Anchor: the sample under the camera (in data coordinates), clamped to the grid.
-  const gmm::Heightfield& hf = in.Engine.heightfield();
+  const gmm::Heightfield& hf = in.Engine().heightfield();
   double eye[4] = { view.eye.x, view.eye.y, view.eye.z, 1.0 };
   if (!act->GetIsIdentity())
   {
@@ -654,12 +662,12 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   in.AnchorI = static_cast<int>(vtkMath::ClampValue(std::round((eye[0] - hf.x0) / hf.dx), 0.0, hf.nx - 1.0));
   in.AnchorJ = static_cast<int>(vtkMath::ClampValue(std::round((eye[1] - hf.y0) / hf.dy), 0.0, hf.ny - 1.0));
-  const gmm::Box& root = in.Engine.quadtree().nodes[0].box;
+  const gmm::Box& root = in.Engine().quadtree().nodes[0].box;
   in.HeightRef = static_cast<float>(0.5 * (root.lo.z + root.hi.z));
   in.AnchorShift->Identity();
   in.AnchorShift->SetElement(3, 0, hf.worldX(in.AnchorI));
   in.AnchorShift->SetElement(3, 1, hf.worldY(in.AnchorJ));
-  in.AnchorShift->SetElement(3, 2, hf.z0 + this->HeightScale * static_cast<double>(in.HeightRef));
+  in.AnchorShift->SetElement(3, 2, hf.z0 + this->Internal->Settings.heightScale * static_cast<double>(in.HeightRef));
 
   // Texture coordinates only while textured: the proxy then declares them to VTK.
   const bool textured = act->GetTexture() != nullptr || act->GetProperty()->GetNumberOfTextures() > 0;
@@ -678,24 +686,12 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   in.GPU.SetTextureCoordinates(textured);
 
-  // Geomorph factors of this frame's selection (a frozen LOD keeps those of its own), then
-  // their texture: the only per-frame morph data. One that cannot be stored draws unmorphed.
+  // The geomorph factors' texture: the only per-frame morph data. Factors that cannot be
+  // stored are not drawn (the frame's bound is then the selection's).
   in.Morphing = false;
-  if (this->Geomorphing)
+  if (frame.morphed)
   {
-    const gmm::Quadtree& qt = in.Engine.quadtree();
-    if (!this->LastFrameFrozen || in.Morph.blockT.size() != static_cast<size_t>(qt.blockCount()))
-    {
-      // Part of the frame's LOD work: its time goes into LastUpdateTime (a frame whose
-      // blocks all change configuration recomputes their part errors, which can cost more
-      // than the selection).
-      const auto start = Clock::now();
-      gmm::computeMorph(hf, qt, in.Engine.levels(), in.Engine.pixelFactors(),
-        gmm::morphErrorBudget(in.Engine.stats(), this->PixelError), in.MorphCache, in.Morph,
-        in.Engine.morphRamp(), &in.Engine.drawnBlocks(), &in.Engine.drawnConfigs(), &in.Engine.errorTable());
-      this->LastUpdateTime += this->LastFrameFrozen ? 0.0 : SecondsSince(start);
-    }
-    const std::string merr = in.MorphTexture.Update(win, qt, in.Morph);
+    const std::string merr = in.MorphTexture.Update(win, in.Engine().quadtree(), in.Driver.morph());
     in.Morphing = merr.empty();
     this->LastMorphUploadBytes = static_cast<vtkTypeInt64>(in.MorphTexture.GetLastUploadBytes());
     if (!merr.empty() && merr != in.ReportedMorphError)
@@ -714,8 +710,8 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   if (this->FrontToBack)
   {
-    gmm::frontToBack(in.Engine.quadtree(), gmm::heightfieldToWorld(view, hf.z0, this->HeightScale),
-      view.eye, in.Engine.drawnBlocks(), in.Engine.mergedNodeList(), in.Order);
+    gmm::frontToBack(in.Engine().quadtree(), gmm::heightfieldToWorld(view, hf.z0, this->Internal->Settings.heightScale),
+      view.eye, in.Engine().drawnBlocks(), in.Engine().mergedNodeList(), in.Order);
   }
   else
   {
@@ -741,7 +737,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   Internals& in = *this->Internal;
   vtkGeoMipMapGPUTerrain::Inputs gpu;
   gpu.Heights = in.Terrain->GetHeights();
-  gpu.HF = &in.Engine.heightfield();
+  gpu.HF = &in.Engine().heightfield();
   gpu.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
   gpu.MaximumTileSize = this->MaximumTileSize;
   gpu.ShareHeights = this->ShareHeights;
@@ -863,14 +859,14 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
   {
     in.PrimitiveRestart = (GLEW_VERSION_4_3 || GLEW_ARB_ES3_compatibility) ? 1 : 0;
   }
-  const gmm::IndexArena& arena = in.Engine.indexArena();
+  const gmm::IndexArena& arena = in.Engine().indexArena();
   // The arena (slots, unused space = restart index) needs primitive restart; without it,
   // the plain concatenated triangles are uploaded whole.
-  const std::vector<uint32_t>& tris = in.PrimitiveRestart ? arena.indices() : in.Engine.indices();
-  const gmm::Heightfield& hf = in.Engine.heightfield();
+  const std::vector<uint32_t>& tris = in.PrimitiveRestart ? arena.indices() : in.Engine().indices();
+  const gmm::Heightfield& hf = in.Engine().heightfield();
   const uint32_t pitch = gmm::drawPitch(hf.nx, hf.ny); // the vertex shader decodes ids with it
   vtkTypeInt64 bytes = 0;
-  if (in.Engine.stats().triangles == 0)
+  if (in.Engine().stats().triangles == 0)
   {
     ibo->IndexCount = 0;
     in.MirroredArena = 0;
@@ -880,7 +876,7 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
     // The stock mapper draws wireframe triangles as GL_LINES: three edges per triangle.
     // From the plain list in block order: an edge shared by two triangles is drawn twice,
     // and which one shows depends on the order, which must not depend on the history.
-    const std::vector<uint32_t>& plain = in.Engine.indices();
+    const std::vector<uint32_t>& plain = in.Engine().indices();
     std::vector<unsigned int>& up = in.Lines;
     up.resize(plain.size() * 2);
     for (std::size_t t = 0; t < plain.size(); t += 3)
@@ -935,7 +931,7 @@ void vtkGeoMipMapMapper::UploadIndices(vtkActor* act, bool whole)
 void vtkGeoMipMapMapper::DrawTriangles(unsigned int mode, std::size_t indexCount)
 {
   Internals& in = *this->Internal;
-  const gmm::IndexArena& arena = in.Engine.indexArena();
+  const gmm::IndexArena& arena = in.Engine().indexArena();
   GLuint query = 0, vertexQuery = 0;
   if (this->CountFragments)
   {
@@ -1065,7 +1061,7 @@ void vtkGeoMipMapMapper::SetMapperShaderParameters(
   Internals& in = *this->Internal;
   vtkShaderProgram* p = cellBO.Program;
   in.GPU.SetUniforms(
-    p, in.Engine.heightfield(), this->HeightScale, in.AnchorI, in.AnchorJ, in.HeightRef);
+    p, in.Engine().heightfield(), this->Internal->Settings.heightScale, in.AnchorI, in.AnchorJ, in.HeightRef);
   if (in.Morphing)
   {
     in.MorphTexture.SetUniforms(p);
@@ -1196,22 +1192,17 @@ void vtkGeoMipMapMapper::ReleaseGraphicsResources(vtkWindow* win)
 void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "PixelError: " << this->PixelError << "\n";
+  vtkGeoMipMapConversion::PrintFrameSettings(os, indent, this->Internal->Settings);
   os << indent << "BlockSize: " << this->BlockSize << "\n";
   os << indent << "TableCache: " << this->TableCache << "\n";
   os << indent << "TableCacheDirectory: "
      << (this->TableCacheDirectory ? this->TableCacheDirectory : "(default)") << "\n";
-  os << indent << "HeightScale: " << this->HeightScale << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "ShareHeights: " << this->ShareHeights << "\n";
   os << indent << "SlopeTexture: " << this->SlopeTexture << "\n";
   os << indent << "VertexNormals: " << this->VertexNormals << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
-  os << indent << "Geomorphing: " << this->Geomorphing << "\n";
-  os << indent << "GeomorphRange: " << this->GeomorphRange << "\n";
-  os << indent << "GeomorphMerges: " << this->GeomorphMerges << "\n";
-  os << indent << "TriangleBudget: " << this->TriangleBudget << "\n";
   os << indent << "FollowAllocatedRenderTime: " << this->FollowAllocatedRenderTime << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";
   os << indent << "TriangleBudgetInForce: " << this->GetTriangleBudgetInForce() << "\n";

@@ -97,7 +97,7 @@ public:
    * Negative or NaN values are rejected with an error and the previous value is kept.
    */
   void SetPixelError(double tau);
-  vtkGetMacro(PixelError, double);
+  double GetPixelError();
   ///@}
 
   ///@{
@@ -166,7 +166,7 @@ public:
    * linearly), unlike an actor scale it keeps picking and GetHeightAt in data units.
    */
   void SetHeightScale(double scale);
-  vtkGetMacro(HeightScale, double);
+  double GetHeightScale();
   ///@}
 
   ///@{
@@ -290,7 +290,7 @@ public:
    * setting outputs the same positions. See Documentation/design.md, "Geomorphing".
    */
   void SetGeomorphing(bool on);
-  vtkGetMacro(Geomorphing, bool);
+  bool GetGeomorphing();
   vtkBooleanMacro(Geomorphing, bool);
   ///@}
 
@@ -311,7 +311,7 @@ public:
    * certificate holds at any range.
    */
   void SetGeomorphRange(double range);
-  vtkGetMacro(GeomorphRange, double);
+  double GetGeomorphRange();
   ///@}
 
   ///@{
@@ -331,7 +331,7 @@ public:
    * (Documentation/benchmarks-core.md, session 9).
    */
   void SetGeomorphMerges(bool on);
-  vtkGetMacro(GeomorphMerges, bool);
+  bool GetGeomorphMerges();
   vtkBooleanMacro(GeomorphMerges, bool);
   ///@}
 
@@ -347,7 +347,7 @@ public:
    * "Triangle budgets"). Negative values are refused with an error.
    */
   void SetTriangleBudget(vtkIdType budget);
-  vtkGetMacro(TriangleBudget, vtkIdType);
+  vtkIdType GetTriangleBudget();
   ///@}
 
   ///@{
@@ -561,11 +561,12 @@ protected:
   // and possible.
   void DrawTriangles(unsigned int mode, std::size_t indexCount);
 
-  double PixelError = 1.0;
+  // The LOD settings shared with vtkGeoMipMapFilter (PixelError, TriangleBudget,
+  // HeightScale, Geomorphing, GeomorphRange, GeomorphMerges) are one gmm::FrameSettings in
+  // the internals.
   int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;
-  double HeightScale = 1.0;
   vtkTypeInt64 MemoryLimit = 0;
   int MaximumTileSize = 0;
   bool ShareHeights = true;
@@ -582,11 +583,7 @@ protected:
   bool LastTablesFromCache = false;
   bool LastFrameDrawn = false; // the engine ran in the last RenderPiece (else stats are 0)
   bool FreezeLevelOfDetail = false;
-  bool Geomorphing = true;
-  double GeomorphRange; // gmm::kDefaultMorphRange
-  bool GeomorphMerges = false;
   bool LastFrameFrozen = false; // the last RenderPiece kept the frozen selection
-  vtkIdType TriangleBudget = 0;
   bool FollowAllocatedRenderTime = false;
   bool FrontToBack = true;
   bool CountFragments = false;

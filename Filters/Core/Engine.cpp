@@ -122,12 +122,6 @@ std::string validateHeightScale(double scale)
   return why.str();
 }
 
-double morphErrorBudget(const FrameStats& stats, double tau)
-{
-  return stats.triangleBudget > 0 && std::isfinite(stats.maxScreenError) ? std::max(tau, stats.maxScreenError)
-                                                                          : tau;
-}
-
 std::string Engine::setHeightScale(double scale)
 {
   std::string err = validateHeightScale(scale);

@@ -51,14 +51,6 @@ struct FrameStats
 // one rule of Engine::setHeightScale and the mapper's and filter's SetHeightScale.
 std::string validateHeightScale(double scale);
 
-// The screen error (pixels) geomorphing may use in a frame drawn at `tau` with `stats`:
-// tau, or in a budgeted frame whose certified error is larger, that error. Each block's
-// morph stays within it (computeMorph), so the frame's bound is the same, and blocks at
-// the budget's margin morph instead of popping: a budgeted frame's error is well above tau
-// (tau 0 asks for the smallest error the budget allows), so with tau alone nearly nothing
-// morphed. The one rule of the mapper and the filter.
-double morphErrorBudget(const FrameStats& stats, double tau);
-
 class Engine
 {
 public:

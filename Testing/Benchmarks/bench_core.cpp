@@ -22,14 +22,16 @@
 // ground under/just ahead of it, looking forward and 15 degrees down, fov 60, 1280 x 720,
 // tau = 1 px, the default block size (gmm::kDefaultBlockQuads; GEOMIPMAP_BENCH_BLOCK=N for
 // another) unless swept. Each benchmark iteration is one frame, single thread; the flight
-// loops after kFlightFrames frames. Counters: frame_us, the whole iteration (engine default:
-// Engine::update, cull + select + tessellate, then Engine::indices(), the concatenated list
-// the filter outputs; mapper default: update and computeMorph); update_us, Engine::update
-// alone (the mapper's frame without geomorphing: it draws the index arena, no list).
+// loops after kFlightFrames frames. Each frame is gmm::FrameDriver's, as the mapper runs it.
+// Counters: frame_us, the whole iteration (engine default: the frame without geomorphing,
+// cull + select + tessellate, then Engine::indices(), the concatenated list the filter
+// outputs; mapper default: the frame with geomorphing's level path and factors); update_us,
+// the FrameDriver's frame alone (without geomorphing, the mapper's: it draws the index
+// arena, no list).
 // Concatenating was more than half the engine default's frame at 4097^2 (session 16).
 #include "BenchFlight.h"
 #include "Engine.h"
-#include "Morph.h"
+#include "Frame.h"
 #include "SyntheticTerrain.h"
 
 #include <benchmark/benchmark.h>
@@ -142,32 +144,29 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   if (farDistance > 0.0)
     for (gmm::View& v : flight)
       v.farDistance = farDistance;
-  gmm::Engine& e = *s.engine;
-  e.setMorphRange(mapperDefault ? gmm::kDefaultMorphRange : 0.0);
-  e.setMergeOnPath(mapperDefault && envInt("GEOMIPMAP_BENCH_MERGE_ON_PATH", 0) != 0);
-  gmm::MorphCache morphCache;
-  gmm::MorphFrame morph;
+  // The frame as the mapper runs it (gmm::FrameDriver) on the scene's terrain: geomorphing's
+  // level path and factors for the mapper default, the selection alone for the engine's.
+  gmm::FrameDriver driver;
+  driver.setTerrain(s.engine->terrain());
+  gmm::FrameSettings settings;
+  settings.pixelError = 1.0;
+  settings.geomorphing = mapperDefault;
+  settings.geomorphMerges = mapperDefault && envInt("GEOMIPMAP_BENCH_MERGE_ON_PATH", 0) != 0;
+  const gmm::Engine& e = driver.engine();
   std::size_t frame = 0, triangles = 0, reused = 0, visible = 0, regenFrames = 0;
   double maxErr = 0, totalUs = 0, regenUs = 0, updateUs = 0;
   // Warm up one frame (with its morph when measured) so that the first measured frame is
   // not a cold start: the first computeMorph allocates its cache, a one-off cost that 2000
   // frames would otherwise spread over the mean.
-  e.update(flight[0], 1.0);
-  if (mapperDefault)
-  {
-    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 1.0, morphCache,
-      morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
-  }
+  driver.update(flight[0], settings);
   for (auto _ : state)
   {
     const auto t0 = std::chrono::steady_clock::now();
-    const gmm::FrameStats& st = e.update(flight[frame % flight.size()], 1.0);
+    const gmm::FrameStats& st = driver.update(flight[frame % flight.size()], settings).stats;
     updateUs += seconds(t0) * 1e6;
     if (mapperDefault)
     {
-      gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), 1.0, morphCache,
-        morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
-      benchmark::DoNotOptimize(morph.blockT.data());
+      benchmark::DoNotOptimize(driver.morph().blockT.data());
     }
     else
     {
@@ -198,50 +197,43 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   state.counters["table_build_s"] = s.tableSeconds;
   state.counters["fullres_ms"] = s.fullResSeconds * 1e3;
   state.counters["fullres_tris"] = static_cast<double>(s.fullResTriangles);
-  e.setMorphRange(0.0); // the scene's engine is shared by the other registrations
 }
 
 // BM_BudgetFlight: the mapper's CPU work per frame in a budgeted frame (issue #14): the same
 // flight with tau 0 and a triangle budget, each frame's search started at the previous
-// frame's tau (FrameStats::budgetTau, as the mapper does), and computeMorph within the
-// frame's error (gmm::morphErrorBudget), as the mapper runs them with geomorphing on (its
-// default range set; budgeted frames follow no level path). The budget is held, or
-// (`varying`) moved by +-15 % every 8 frames as a frame-rate controller moves it. Counters:
-// selections a frame (the search's trials) and the certified error reached.
+// frame's tau (FrameSettings::budgetWarmStart, as the mapper does), and the morph factors
+// within the frame's error (gmm::morphErrorBudget), as gmm::FrameDriver runs them with
+// geomorphing on (budgeted frames follow no level path). The budget is held, or (`varying`)
+// moved by +-15 % every 8 frames as a frame-rate controller moves it. Counters: selections
+// a frame (the search's trials) and the certified error the selection reached.
 void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::size_t budget, bool varying)
 {
   Scene& s = scene(size, blockQuads);
-  gmm::Engine& e = *s.engine;
-  e.setMorphRange(gmm::kDefaultMorphRange);
-  e.setMergeOnPath(false);
-  gmm::MorphCache morphCache;
-  gmm::MorphFrame morph;
+  gmm::FrameDriver driver;
+  driver.setTerrain(s.engine->terrain());
+  gmm::FrameSettings settings;
+  settings.pixelError = 0.0;
+  settings.budgetWarmStart = true;
   std::size_t frame = 0, triangles = 0, trials = 0;
-  double totalUs = 0, errorSum = 0, startTau = 0;
+  double totalUs = 0, errorSum = 0;
   auto budgetOf = [&](std::size_t f) {
     if (!varying)
       return budget;
     const double scale[] = { 1.0, 1.15, 1.0, 0.85 };
     return static_cast<std::size_t>(budget * scale[(f / 8) % 4]);
   };
-  e.update(s.flight[0], 0.0, budgetOf(0), 0.0); // warm-up, as runFlight
-  startTau = e.stats().budgetTau;
-  gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(),
-    gmm::morphErrorBudget(e.stats(), 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(),
-    &e.errorTable());
+  settings.triangleBudget = budgetOf(0);
+  driver.update(s.flight[0], settings); // warm-up, as runFlight
   for (auto _ : state)
   {
     const auto t0 = std::chrono::steady_clock::now();
-    const gmm::FrameStats& st = e.update(s.flight[frame % s.flight.size()], 0.0, budgetOf(frame), startTau);
-    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(),
-      gmm::morphErrorBudget(st, 0.0), morphCache, morph, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(),
-      &e.errorTable());
-    benchmark::DoNotOptimize(morph.blockT.data());
+    settings.triangleBudget = budgetOf(frame);
+    const gmm::Frame& f = driver.update(s.flight[frame % s.flight.size()], settings);
+    benchmark::DoNotOptimize(driver.morph().blockT.data());
     totalUs += seconds(t0) * 1e6;
-    startTau = st.budgetTau;
-    triangles += st.triangles;
-    trials += static_cast<std::size_t>(st.budgetTrials);
-    errorSum += st.maxScreenError;
+    triangles += f.stats.triangles;
+    trials += static_cast<std::size_t>(f.stats.budgetTrials);
+    errorSum += f.selectionScreenError;
     ++frame;
   }
   const double n = static_cast<double>(frame);
@@ -249,7 +241,6 @@ void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::siz
   state.counters["triangles"] = triangles / n;
   state.counters["selections"] = trials / n;
   state.counters["certified_px_mean"] = errorSum / n;
-  e.setMorphRange(0.0);
 }
 
 void BM_FullResolutionIndices(benchmark::State& state, int blockQuads)

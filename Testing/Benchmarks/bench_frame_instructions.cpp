@@ -10,17 +10,16 @@
 //   valgrind --tool=callgrind --instr-atstart=no build/Testing/Benchmarks/bench_frame_instructions 4097
 //   callgrind_annotate callgrind.out.<pid> | head -40
 //
-// Arguments: SIZE (4097) FRAMES (100) METRES_PER_FRAME (20) MAPPER (1: Engine::update on
-// geomorphing's level path and computeMorph, as the mapper's default frame; 0: the update
-// alone). Scene as bench_core's (synthetic terrain, seed 42, 30 m spacing, its flight from
+// Arguments: SIZE (4097) FRAMES (100) METRES_PER_FRAME (20) MAPPER (1: the mapper's default
+// frame, gmm::FrameDriver with geomorphing's level path and factors; 0: without geomorphing,
+// the engine's update alone). Scene as bench_core's (synthetic terrain, seed 42, 30 m spacing, its flight from
 // BenchFlight.h, tau 1, the default block size), terrain and tables on one thread. Only the frames are counted
 // (callgrind's instrumentation starts after the first frame, which allocates the caches).
 // Printed: the triangles summed over the frames and a hash of every frame's levels, merged
 // nodes, morph factors and certified bounds: a change that claims the same selections must
 // leave it as it was.
 #include "BenchFlight.h"
-#include "Engine.h"
-#include "Morph.h"
+#include "Frame.h"
 #include "SyntheticTerrain.h"
 
 #if defined(__has_include)
@@ -70,16 +69,19 @@ int main(int argc, char** argv)
   gmm::Heightfield hf = gmm::makeSyntheticTerrain(size, size, 30.0, 42, 1500.0, 1);
   // frames + 1 views: the first is the warm-up.
   const std::vector<gmm::View> path = gmmbench::makeFlight(hf, frames + 1, step);
-  gmm::Engine engine;
-  const std::string err = engine.setHeightfield(std::move(hf), gmm::kDefaultBlockQuads, 1);
+  std::shared_ptr<const gmm::Terrain> terrain;
+  const std::string err = gmm::buildTerrain(std::move(hf), gmm::kDefaultBlockQuads, 1, terrain);
   if (!err.empty())
   {
-    std::fprintf(stderr, "setHeightfield failed: %s\n", err.c_str());
+    std::fprintf(stderr, "buildTerrain failed: %s\n", err.c_str());
     return 1;
   }
-  engine.setMorphRange(mapper ? gmm::kDefaultMorphRange : 0.0);
-  gmm::MorphCache cache;
-  gmm::MorphFrame morph;
+  gmm::FrameDriver driver;
+  driver.setTerrain(terrain);
+  gmm::FrameSettings settings;
+  settings.geomorphing = mapper;
+  const gmm::Engine& engine = driver.engine();
+  const gmm::MorphFrame& morph = driver.morph();
   uint64_t hash = 0;
   long long triangles = 0;
   for (int f = 0; f <= frames; ++f)
@@ -88,13 +90,8 @@ int main(int argc, char** argv)
     {
       CALLGRIND_START_INSTRUMENTATION;
     }
-    const gmm::FrameStats& st = engine.update(path[f], 1.0);
-    if (mapper)
-    {
-      gmm::computeMorph(engine.heightfield(), engine.quadtree(), engine.levels(), engine.pixelFactors(),
-        gmm::morphErrorBudget(st, 1.0), cache, morph, engine.morphRamp(), &engine.drawnBlocks(), &engine.drawnConfigs(),
-        &engine.errorTable());
-    }
+    const gmm::Frame& frame = driver.update(path[f], settings);
+    const gmm::FrameStats& st = frame.stats;
     if (f == 0)
     {
       continue;
@@ -109,7 +106,7 @@ int main(int argc, char** argv)
     {
       hash = mix(hash, static_cast<uint64_t>(n));
     }
-    hash = mix(hash, bitsOf(st.maxScreenError));
+    hash = mix(hash, bitsOf(frame.selectionScreenError));
     hash = mix(hash, mapper ? bitsOf(morph.maxBoundPixels) : 0);
   }
   CALLGRIND_STOP_INSTRUMENTATION;

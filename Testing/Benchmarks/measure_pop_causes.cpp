@@ -22,6 +22,7 @@
 //
 // --range 0 turns geomorphing off (levels switch at once). A measurement, not a test.
 #include "Engine.h"
+#include "Frame.h"
 #include "Morph.h"
 #include "SyntheticTerrain.h"
 #include "../Core/CoreTestUtil.h"

@@ -23,6 +23,7 @@
 //   computed from nothing.
 #include "CoreTestUtil.h"
 #include "Engine.h"
+#include "Frame.h"
 #include "Levels.h"
 #include "Morph.h"
 #include "MorphRamp.h"
