@@ -80,6 +80,94 @@ vtkMTimeType vtkGeoMipMapFilter::GetMTime()
   return t;
 }
 
+namespace
+{
+// The driver's frame as a vtkPolyData: its triangles over the samples they use (compacted, in
+// sample order; sorted rather than looked up in a table over all samples, so that the work
+// and memory follow the triangles, not the DEM: a table of ids took 2 GiB per update at
+// 16385^2), at their drawn heights, with the full-resolution normals and the frame's
+// statistics as field data.
+void FrameToPolyData(const gmm::FrameDriver& driver, double heightScale, vtkPolyData* output)
+{
+  const gmm::Frame& frame = driver.frame();
+  const gmm::Engine& engine = driver.engine();
+  const gmm::Heightfield& hf = engine.heightfield();
+  const std::vector<uint32_t>& tris = engine.indices();
+  std::vector<uint32_t> used(tris);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  vtkNew<vtkTypeInt64Array> conn;
+  conn->SetNumberOfTuples(static_cast<vtkIdType>(tris.size()));
+  for (std::size_t k = 0; k < tris.size(); ++k)
+  {
+    conn->SetValue(static_cast<vtkIdType>(k),
+      static_cast<vtkIdType>(std::lower_bound(used.begin(), used.end(), tris[k]) - used.begin()));
+  }
+  const vtkIdType nTris = static_cast<vtkIdType>(tris.size() / 3);
+  vtkNew<vtkTypeInt64Array> offsets;
+  offsets->SetNumberOfTuples(nTris + 1);
+  for (vtkIdType t = 0; t <= nTris; ++t)
+  {
+    offsets->SetValue(t, 3 * t);
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, conn);
+
+  const vtkIdType nPts = static_cast<vtkIdType>(used.size());
+  vtkNew<vtkDoubleArray> xyz; // double: UTM-size coordinates keep their precision
+  xyz->SetNumberOfComponents(3);
+  xyz->SetNumberOfTuples(nPts);
+  vtkNew<vtkFloatArray> elevation;
+  elevation->SetName("Elevation");
+  elevation->SetNumberOfTuples(nPts);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(nPts);
+  for (vtkIdType p = 0; p < nPts; ++p)
+  {
+    const int i = static_cast<int>(used[p] % static_cast<uint32_t>(hf.nx));
+    const int j = static_cast<int>(used[p] / static_cast<uint32_t>(hf.nx));
+    const double z = frame.morphed
+      ? gmm::morphedHeight(hf, engine.quadtree(), engine.levels(), driver.morph(), i, j)
+      : static_cast<double>(hf.heights()[used[p]]);
+    xyz->SetTypedTuple(
+      p, std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + heightScale * z }.data());
+    elevation->SetValue(p, static_cast<float>(z));
+    vtkGeoMipMapConversion::SampleNormal(hf, i, j, heightScale, normals->GetPointer(3 * p));
+  }
+  vtkNew<vtkPoints> points;
+  points->SetData(xyz);
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  output->GetPointData()->SetScalars(elevation);
+  output->GetPointData()->SetNormals(normals);
+
+  auto addInt = [output](const char* name, double v) {
+    vtkNew<vtkIntArray> a;
+    a->SetName(name);
+    a->InsertNextValue(static_cast<int>(v));
+    output->GetFieldData()->AddArray(a);
+  };
+  auto addDouble = [output](const char* name, double v) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(v);
+    output->GetFieldData()->AddArray(a);
+  };
+  vtkNew<vtkTypeInt64Array> triCount;
+  triCount->SetName("Triangles");
+  triCount->InsertNextValue(static_cast<vtkTypeInt64>(frame.stats.triangles));
+  output->GetFieldData()->AddArray(triCount);
+  addInt("VisibleBlocks", frame.stats.visibleBlocks);
+  addInt("CulledBlocks", frame.stats.culledBlocks);
+  // The bound of what is output: the morphed surface's when morphing (still <= PixelError, or
+  // a budgeted frame's own certified error: gmm::morphErrorBudget).
+  addDouble("MaximumScreenSpaceError", frame.stats.maxScreenError);
+  addDouble("MaximumGeometricError", frame.stats.maxGeometricError);
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 int vtkGeoMipMapFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -130,87 +218,7 @@ int vtkGeoMipMapFilter::RequestData(
     vtkErrorMacro("LOD update failed: " << frame->error);
     return 0;
   }
-  const gmm::FrameStats* stats = &frame->stats;
-  const gmm::Engine& engine = in.Driver.engine();
-  const double heightScale = in.Settings.heightScale;
-
-  // Compact: only the samples the triangles use, in sample order. Sorted rather than
-  // looked up in a table over all samples, so that the work and memory follow the
-  // triangles, not the DEM (a table of ids took 2 GiB per update at 16385^2).
-  const gmm::Heightfield& hf = engine.heightfield();
-  const std::vector<uint32_t>& tris = engine.indices();
-  std::vector<uint32_t> used(tris);
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  vtkNew<vtkTypeInt64Array> conn;
-  conn->SetNumberOfTuples(static_cast<vtkIdType>(tris.size()));
-  for (std::size_t k = 0; k < tris.size(); ++k)
-  {
-    conn->SetValue(static_cast<vtkIdType>(k),
-      static_cast<vtkIdType>(std::lower_bound(used.begin(), used.end(), tris[k]) - used.begin()));
-  }
-  const vtkIdType nTris = static_cast<vtkIdType>(tris.size() / 3);
-  vtkNew<vtkTypeInt64Array> offsets;
-  offsets->SetNumberOfTuples(nTris + 1);
-  for (vtkIdType t = 0; t <= nTris; ++t)
-  {
-    offsets->SetValue(t, 3 * t);
-  }
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, conn);
-
-  const vtkIdType nPts = static_cast<vtkIdType>(used.size());
-  vtkNew<vtkDoubleArray> xyz; // double: UTM-size coordinates keep their precision
-  xyz->SetNumberOfComponents(3);
-  xyz->SetNumberOfTuples(nPts);
-  vtkNew<vtkFloatArray> elevation;
-  elevation->SetName("Elevation");
-  elevation->SetNumberOfTuples(nPts);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(nPts);
-  for (vtkIdType p = 0; p < nPts; ++p)
-  {
-    const int i = static_cast<int>(used[p] % static_cast<uint32_t>(hf.nx));
-    const int j = static_cast<int>(used[p] / static_cast<uint32_t>(hf.nx));
-    const double z = frame->morphed
-      ? gmm::morphedHeight(hf, engine.quadtree(), engine.levels(), in.Driver.morph(), i, j)
-      : static_cast<double>(hf.heights()[used[p]]);
-    xyz->SetTypedTuple(
-      p, std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + heightScale * z }.data());
-    elevation->SetValue(p, static_cast<float>(z));
-    vtkGeoMipMapConversion::SampleNormal(hf, i, j, heightScale, normals->GetPointer(3 * p));
-  }
-  vtkNew<vtkPoints> points;
-  points->SetData(xyz);
-  output->SetPoints(points);
-  output->SetPolys(polys);
-  output->GetPointData()->SetScalars(elevation);
-  output->GetPointData()->SetNormals(normals);
-
-  auto addInt = [output](const char* name, double v) {
-    vtkNew<vtkIntArray> a;
-    a->SetName(name);
-    a->InsertNextValue(static_cast<int>(v));
-    output->GetFieldData()->AddArray(a);
-  };
-  auto addDouble = [output](const char* name, double v) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->InsertNextValue(v);
-    output->GetFieldData()->AddArray(a);
-  };
-  vtkNew<vtkTypeInt64Array> triCount;
-  triCount->SetName("Triangles");
-  triCount->InsertNextValue(static_cast<vtkTypeInt64>(stats->triangles));
-  output->GetFieldData()->AddArray(triCount);
-  addInt("VisibleBlocks", stats->visibleBlocks);
-  addInt("CulledBlocks", stats->culledBlocks);
-  // The bound of what is output: the morphed surface's when morphing (still <= PixelError, or
-  // a budgeted frame's own certified error: gmm::morphErrorBudget).
-  addDouble("MaximumScreenSpaceError", stats->maxScreenError);
-  addDouble("MaximumGeometricError", stats->maxGeometricError);
+  FrameToPolyData(in.Driver, in.Settings.heightScale, output);
   return 1;
 }
 

@@ -121,6 +121,70 @@ struct vtkGeoMipMapMapper::Internals
   const gmm::Terrain* BoundsOf = nullptr;
   double ValidXY[4] = { 0, 0, 0, 0 };
   bool AnyValid = false;
+
+  // The anchor of this frame: the sample under the camera (in data coordinates), clamped to
+  // the grid, and the reference height.
+  void PlaceAnchor(const gmm::View& view, vtkActor* act)
+  {
+    const gmm::Heightfield& hf = this->Engine().heightfield();
+    double eye[4] = { view.eye.x, view.eye.y, view.eye.z, 1.0 };
+    if (!act->GetIsIdentity())
+    {
+      vtkNew<vtkMatrix4x4> inv;
+      vtkMatrix4x4::Invert(act->GetMatrix(), inv);
+      inv->MultiplyPoint(eye, eye);
+    }
+    this->AnchorI = static_cast<int>(vtkMath::ClampValue(std::round((eye[0] - hf.x0) / hf.dx), 0.0, hf.nx - 1.0));
+    this->AnchorJ = static_cast<int>(vtkMath::ClampValue(std::round((eye[1] - hf.y0) / hf.dy), 0.0, hf.ny - 1.0));
+    const gmm::Box& root = this->Engine().quadtree().nodes[0].box;
+    this->HeightRef = static_cast<float>(0.5 * (root.lo.z + root.hi.z));
+    this->AnchorShift->Identity();
+    this->AnchorShift->SetElement(3, 0, hf.worldX(this->AnchorI));
+    this->AnchorShift->SetElement(3, 1, hf.worldY(this->AnchorJ));
+    this->AnchorShift->SetElement(3, 2, hf.z0 + this->Settings.heightScale * static_cast<double>(this->HeightRef));
+  }
+
+  // Texture coordinates only while textured: the proxy then declares them to VTK.
+  void DeclareTextureCoordinates(vtkActor* act)
+  {
+    const bool textured = act->GetTexture() != nullptr || act->GetProperty()->GetNumberOfTextures() > 0;
+    vtkPointData* pd = this->Proxy->GetPointData();
+    if (textured && !pd->GetTCoords())
+    {
+      vtkNew<vtkFloatArray> tc;
+      tc->SetName("TCoords");
+      tc->SetNumberOfComponents(2);
+      tc->InsertNextTuple2(0.0, 0.0);
+      pd->SetTCoords(tc);
+    }
+    else if (!textured && pd->GetTCoords())
+    {
+      pd->RemoveArray("TCoords");
+    }
+    this->GPU.SetTextureCoordinates(textured);
+  }
+
+  // The geomorph factors' texture: the only per-frame morph data; returns the bytes uploaded.
+  // Factors that cannot be stored are not drawn (the frame's bound is then the selection's),
+  // and said once.
+  vtkTypeInt64 UploadMorph(vtkObject* self, vtkOpenGLRenderWindow* win, const gmm::Frame& frame)
+  {
+    this->Morphing = false;
+    vtkTypeInt64 bytes = 0;
+    if (frame.morphed)
+    {
+      const std::string err = this->MorphTexture.Update(win, this->Engine().quadtree(), this->Driver.morph());
+      this->Morphing = err.empty();
+      bytes = static_cast<vtkTypeInt64>(this->MorphTexture.GetLastUploadBytes());
+      if (!err.empty() && err != this->ReportedMorphError)
+      {
+        vtkWarningWithObjectMacro(self, << err);
+      }
+      this->ReportedMorphError = err;
+    }
+    this->GPU.SetMorph(this->Morphing);
+    return bytes;
+  }
 };
 
 vtkStandardNewMacro(vtkGeoMipMapMapper);
@@ -651,56 +715,9 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     return;
   }
 
-  // Anchor: the sample under the camera (in data coordinates), clamped to the grid.
-  const gmm::Heightfield& hf = in.Engine().heightfield();
-  double eye[4] = { view.eye.x, view.eye.y, view.eye.z, 1.0 };
-  if (!act->GetIsIdentity())
-  {
-    vtkNew<vtkMatrix4x4> inv;
-    vtkMatrix4x4::Invert(act->GetMatrix(), inv);
-    inv->MultiplyPoint(eye, eye);
-  }
-  in.AnchorI = static_cast<int>(vtkMath::ClampValue(std::round((eye[0] - hf.x0) / hf.dx), 0.0, hf.nx - 1.0));
-  in.AnchorJ = static_cast<int>(vtkMath::ClampValue(std::round((eye[1] - hf.y0) / hf.dy), 0.0, hf.ny - 1.0));
-  const gmm::Box& root = in.Engine().quadtree().nodes[0].box;
-  in.HeightRef = static_cast<float>(0.5 * (root.lo.z + root.hi.z));
-  in.AnchorShift->Identity();
-  in.AnchorShift->SetElement(3, 0, hf.worldX(in.AnchorI));
-  in.AnchorShift->SetElement(3, 1, hf.worldY(in.AnchorJ));
-  in.AnchorShift->SetElement(3, 2, hf.z0 + this->Internal->Settings.heightScale * static_cast<double>(in.HeightRef));
-
-  // Texture coordinates only while textured: the proxy then declares them to VTK.
-  const bool textured = act->GetTexture() != nullptr || act->GetProperty()->GetNumberOfTextures() > 0;
-  vtkPointData* pd = in.Proxy->GetPointData();
-  if (textured && !pd->GetTCoords())
-  {
-    vtkNew<vtkFloatArray> tc;
-    tc->SetName("TCoords");
-    tc->SetNumberOfComponents(2);
-    tc->InsertNextTuple2(0.0, 0.0);
-    pd->SetTCoords(tc);
-  }
-  else if (!textured && pd->GetTCoords())
-  {
-    pd->RemoveArray("TCoords");
-  }
-  in.GPU.SetTextureCoordinates(textured);
-
-  // The geomorph factors' texture: the only per-frame morph data. Factors that cannot be
-  // stored are not drawn (the frame's bound is then the selection's).
-  in.Morphing = false;
-  if (frame.morphed)
-  {
-    const std::string merr = in.MorphTexture.Update(win, in.Engine().quadtree(), in.Driver.morph());
-    in.Morphing = merr.empty();
-    this->LastMorphUploadBytes = static_cast<vtkTypeInt64>(in.MorphTexture.GetLastUploadBytes());
-    if (!merr.empty() && merr != in.ReportedMorphError)
-    {
-      vtkWarningMacro(<< merr);
-    }
-    in.ReportedMorphError = merr;
-  }
-  in.GPU.SetMorph(in.Morphing);
+  in.PlaceAnchor(view, act);
+  in.DeclareTextureCoordinates(act);
+  this->LastMorphUploadBytes = in.UploadMorph(this, win, frame);
 
   this->CurrentInput = in.Proxy;
   this->RenderPieceStart(ren, act); // may rebuild buffers, and then the IBO through BuildIBO
@@ -710,8 +727,9 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   if (this->FrontToBack)
   {
-    gmm::frontToBack(in.Engine().quadtree(), gmm::heightfieldToWorld(view, hf.z0, this->Internal->Settings.heightScale),
-      view.eye, in.Engine().drawnBlocks(), in.Engine().mergedNodeList(), in.Order);
+    gmm::frontToBack(in.Engine().quadtree(),
+      gmm::heightfieldToWorld(view, in.Engine().heightfield().z0, in.Settings.heightScale), view.eye,
+      in.Engine().drawnBlocks(), in.Engine().mergedNodeList(), in.Order);
   }
   else
   {
