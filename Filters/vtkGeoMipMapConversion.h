@@ -124,5 +124,54 @@ GEOMIPMAPFILTERS_EXPORT void SampleNormal(
   const gmm::Heightfield& hf, int i, int j, double heightScale, float n[3]);
 }
 
+
+/**
+ * Defines the Set/Get methods of the LOD settings the mapper and the filter share
+ * (PixelError, TriangleBudget, HeightScale, Geomorphing, GeomorphRange, GeomorphMerges) for
+ * `Class`, whose internals hold them as `Internal->Settings` (a gmm::FrameSettings): each
+ * setter applies its rule above and calls `this->Modify()` when the value changed.
+ */
+#define vtkGeoMipMapFrameSettingsMacro(Class, Modify)                                          \
+  void Class::SetPixelError(double tau)                                                        \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->Internal->Settings.pixelError)) \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  double Class::GetPixelError() { return this->Internal->Settings.pixelError; }                \
+  void Class::SetTriangleBudget(vtkIdType budget)                                              \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptTriangleBudget(                                          \
+          this, budget, this->Internal->Settings.triangleBudget))                              \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  vtkIdType Class::GetTriangleBudget()                                                         \
+  {                                                                                            \
+    return static_cast<vtkIdType>(this->Internal->Settings.triangleBudget);                    \
+  }                                                                                            \
+  void Class::SetHeightScale(double scale)                                                     \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->Internal->Settings.heightScale)) \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  double Class::GetHeightScale() { return this->Internal->Settings.heightScale; }              \
+  void Class::SetGeomorphing(bool on)                                                          \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphing))       \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  bool Class::GetGeomorphing() { return this->Internal->Settings.geomorphing; }                \
+  void Class::SetGeomorphRange(double range)                                                   \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptSetting(range, this->Internal->Settings.geomorphRange))  \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  double Class::GetGeomorphRange() { return this->Internal->Settings.geomorphRange; }          \
+  void Class::SetGeomorphMerges(bool on)                                                       \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphMerges))    \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  bool Class::GetGeomorphMerges() { return this->Internal->Settings.geomorphMerges; }
+
 #endif
 // VTK-HeaderTest-Exclude: vtkGeoMipMapConversion.h

@@ -253,31 +253,8 @@ void vtkGeoMipMapFilter::SetBlockSize(int quads)
 }
 
 //------------------------------------------------------------------------------
-// The LOD settings: stored in the FrameSettings shared with vtkGeoMipMapMapper, by its rules
-// (vtkGeoMipMapConversion::Accept*).
-void vtkGeoMipMapFilter::SetHeightScale(double scale)
-{
-  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->Internal->Settings.heightScale))
-  {
-    this->Modified();
-  }
-}
-double vtkGeoMipMapFilter::GetHeightScale()
-{
-  return this->Internal->Settings.heightScale;
-}
-
-void vtkGeoMipMapFilter::SetTriangleBudget(vtkIdType budget)
-{
-  if (vtkGeoMipMapConversion::AcceptTriangleBudget(this, budget, this->Internal->Settings.triangleBudget))
-  {
-    this->Modified();
-  }
-}
-vtkIdType vtkGeoMipMapFilter::GetTriangleBudget()
-{
-  return static_cast<vtkIdType>(this->Internal->Settings.triangleBudget);
-}
+// The LOD settings: stored in the FrameSettings shared with vtkGeoMipMapMapper, by its rules.
+vtkGeoMipMapFrameSettingsMacro(vtkGeoMipMapFilter, Modified);
 
 void vtkGeoMipMapFilter::SetBudgetStartTau(double tau)
 {
@@ -290,54 +267,6 @@ void vtkGeoMipMapFilter::SetBudgetStartTau(double tau)
 double vtkGeoMipMapFilter::GetBudgetStartTau()
 {
   return this->Internal->Settings.budgetStartTau;
-}
-
-void vtkGeoMipMapFilter::SetPixelError(double tau)
-{
-  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->Internal->Settings.pixelError))
-  {
-    this->Modified();
-  }
-}
-double vtkGeoMipMapFilter::GetPixelError()
-{
-  return this->Internal->Settings.pixelError;
-}
-
-void vtkGeoMipMapFilter::SetGeomorphing(bool on)
-{
-  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphing))
-  {
-    this->Modified();
-  }
-}
-bool vtkGeoMipMapFilter::GetGeomorphing()
-{
-  return this->Internal->Settings.geomorphing;
-}
-
-void vtkGeoMipMapFilter::SetGeomorphRange(double range)
-{
-  if (vtkGeoMipMapConversion::AcceptSetting(range, this->Internal->Settings.geomorphRange))
-  {
-    this->Modified();
-  }
-}
-double vtkGeoMipMapFilter::GetGeomorphRange()
-{
-  return this->Internal->Settings.geomorphRange;
-}
-
-void vtkGeoMipMapFilter::SetGeomorphMerges(bool on)
-{
-  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphMerges))
-  {
-    this->Modified();
-  }
-}
-bool vtkGeoMipMapFilter::GetGeomorphMerges()
-{
-  return this->Internal->Settings.geomorphMerges;
 }
 
 //------------------------------------------------------------------------------

@@ -259,67 +259,9 @@ vtkImageData* vtkGeoMipMapMapper::GetDrapeImage()
 }
 
 //------------------------------------------------------------------------------
-// The LOD settings: stored in the FrameSettings shared with vtkGeoMipMapFilter, by its rules
-// (vtkGeoMipMapConversion::Accept*); a change needs new indices, not new buffers.
-void vtkGeoMipMapMapper::SetPixelError(double tau)
-{
-  if (vtkGeoMipMapConversion::AcceptPixelError(this, tau, this->Internal->Settings.pixelError))
-  {
-    this->ModifiedIndicesOnly();
-  }
-}
-double vtkGeoMipMapMapper::GetPixelError()
-{
-  return this->Internal->Settings.pixelError;
-}
-
-void vtkGeoMipMapMapper::SetGeomorphing(bool on)
-{
-  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphing))
-  {
-    this->ModifiedIndicesOnly();
-  }
-}
-bool vtkGeoMipMapMapper::GetGeomorphing()
-{
-  return this->Internal->Settings.geomorphing;
-}
-
-void vtkGeoMipMapMapper::SetGeomorphRange(double range)
-{
-  if (vtkGeoMipMapConversion::AcceptSetting(range, this->Internal->Settings.geomorphRange))
-  {
-    this->ModifiedIndicesOnly();
-  }
-}
-double vtkGeoMipMapMapper::GetGeomorphRange()
-{
-  return this->Internal->Settings.geomorphRange;
-}
-
-void vtkGeoMipMapMapper::SetGeomorphMerges(bool on)
-{
-  if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphMerges))
-  {
-    this->ModifiedIndicesOnly();
-  }
-}
-bool vtkGeoMipMapMapper::GetGeomorphMerges()
-{
-  return this->Internal->Settings.geomorphMerges;
-}
-
-void vtkGeoMipMapMapper::SetTriangleBudget(vtkIdType budget)
-{
-  if (vtkGeoMipMapConversion::AcceptTriangleBudget(this, budget, this->Internal->Settings.triangleBudget))
-  {
-    this->ModifiedIndicesOnly();
-  }
-}
-vtkIdType vtkGeoMipMapMapper::GetTriangleBudget()
-{
-  return static_cast<vtkIdType>(this->Internal->Settings.triangleBudget);
-}
+// The LOD settings: stored in the FrameSettings shared with vtkGeoMipMapFilter, by its rules;
+// a change needs new indices, not new buffers.
+vtkGeoMipMapFrameSettingsMacro(vtkGeoMipMapMapper, ModifiedIndicesOnly);
 
 void vtkGeoMipMapMapper::SetFollowAllocatedRenderTime(bool follow)
 {
@@ -389,18 +331,6 @@ void vtkGeoMipMapMapper::SetBlockSize(int quads)
   {
     this->ModifiedIndicesOnly();
   }
-}
-
-void vtkGeoMipMapMapper::SetHeightScale(double scale)
-{
-  if (vtkGeoMipMapConversion::AcceptHeightScale(this, scale, this->Internal->Settings.heightScale))
-  {
-    this->ModifiedIndicesOnly();
-  }
-}
-double vtkGeoMipMapMapper::GetHeightScale()
-{
-  return this->Internal->Settings.heightScale;
 }
 
 //------------------------------------------------------------------------------
