@@ -3,6 +3,8 @@
 // keeps slots by. The triangles themselves are emitBlock's and the merged fan's.
 #include "Tessellate.h"
 
+#include <algorithm>
+
 namespace gmm
 {
 
@@ -170,7 +172,10 @@ void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int
       drawArea(hf, qt, b, drawnSidesOf(qt, levels, b, blockConfigOf(qt, levels, b)), out, scratch);
     }
   }
-  for (int n : merged)
+  // In node order, as the engine's slots come (Engine::indices), whatever the list's order.
+  std::vector<int> nodes(merged);
+  std::sort(nodes.begin(), nodes.end());
+  for (int n : nodes)
   {
     drawMergedArea(hf, qt, levels, n, out, scratch);
   }

@@ -244,7 +244,8 @@ void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector
 
 // Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in
 // block order with drawArea, then the merged nodes listed in `merged` (their blocks at
-// kCoveredLevel) with drawMergedArea. `out` is cleared first.
+// kCoveredLevel) in node order with drawMergedArea: the order of Engine::indices(). `out`
+// is cleared first.
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   std::vector<uint32_t>& out, const std::vector<int>& merged = {});
 
