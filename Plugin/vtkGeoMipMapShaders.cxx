@@ -105,20 +105,26 @@ const char* const kValid =
 const char* const kNormalOfSlope =
   "vec3 gmmNormalOfSlope(vec2 g) { return normalize(vec3(-gmmHeightScale * g, 1.0)); }\n";
 
-// The fragment's level-0 triangle (Tessellate.h's quad split along its (0,0)-(1,1)
-// diagonal): its vertices c, c + d, c + (1, 1) and their barycentric weights.
+// The fragment's level-0 triangle: quad c split as the full-resolution surface is
+// (gmm::fullResolutionAntiDiagonal, the union jack: along its (0,0)-(1,1) diagonal where
+// c.x + c.y is even, along (1,0)-(0,1) where it is odd), its vertices c + o0, c + o1,
+// c + o2 (offsets in the quad) and their barycentric weights.
 const char* const kQuad =
   "in vec2 gmmGridVSOutput;\n"
-  "struct GmmTri { ivec2 c; ivec2 d; vec3 w; };\n"
+  "struct GmmTri { ivec2 c; ivec2 o0; ivec2 o1; ivec2 o2; vec3 w; };\n"
   "GmmTri gmmTriangle(vec2 g)\n"
   "{\n"
   "  GmmTri t;\n"
   "  vec2 gc = clamp(g, vec2(0.0), vec2(gmmGridSize - 1));\n"
   "  t.c = min(ivec2(floor(gc)), gmmGridSize - 2);\n"
   "  vec2 f = gc - vec2(t.c);\n"
-  "  bool lower = f.x >= f.y;\n"
-  "  t.d = lower ? ivec2(1, 0) : ivec2(0, 1);\n"
-  "  t.w = lower ? vec3(1.0 - f.x, f.x - f.y, f.y) : vec3(1.0 - f.y, f.y - f.x, f.x);\n"
+  "  bool anti = ((t.c.x + t.c.y) & 1) == 1;\n"
+  "  bool lower = anti ? f.x + f.y <= 1.0 : f.x >= f.y;\n"
+  "  t.o0 = anti && !lower ? ivec2(1, 0) : ivec2(0);\n"
+  "  t.o1 = lower ? ivec2(1, 0) : (anti ? ivec2(1, 1) : ivec2(0, 1));\n"
+  "  t.o2 = anti ? ivec2(0, 1) : ivec2(1, 1);\n"
+  "  t.w = anti ? (lower ? vec3(1.0 - f.x - f.y, f.x, f.y) : vec3(1.0 - f.y, f.x + f.y - 1.0, 1.0 - f.x))\n"
+  "             : (lower ? vec3(1.0 - f.x, f.x - f.y, f.y) : vec3(1.0 - f.y, f.y - f.x, f.x));\n"
   "  return t;\n"
   "}\n";
 
@@ -141,9 +147,9 @@ const char* const kSlopeFromTexture =
   "vec2 gmmSlope(ivec2 ij) { return texelFetch(gmmSlopes, gmmTexel(ij), 0).rg; }\n"
   "void gmmTriangleSlopes(GmmTri t, out vec2 s0, out vec2 s1, out vec2 s2)\n"
   "{\n"
-  "  s0 = gmmSlope(t.c);\n"
-  "  s1 = gmmSlope(t.c + t.d);\n"
-  "  s2 = gmmSlope(t.c + ivec2(1));\n"
+  "  s0 = gmmSlope(t.c + t.o0);\n"
+  "  s1 = gmmSlope(t.c + t.o1);\n"
+  "  s2 = gmmSlope(t.c + t.o2);\n"
   "}\n";
 // gmm::sampleSlope's rule (Heightfield.h) on heights already fetched: central
 // differences, one-sided next to the border or nodata, 0 where neither neighbour is valid.
@@ -166,24 +172,30 @@ const char* const kSlopeRule =
   "}\n"
   "float gmmHeightIn(ivec2 ij) { return gmmHeight(clamp(ij, ivec2(0), gmmGridSize - 1)); }\n";
 // Slopes computed per fragment from the heights (SlopeTexture off: no slope texture), by
-// that rule. The three vertices' 15 neighbours are 10 distinct samples: the quad's corners,
-// two beyond each of c and c + (1, 1), and two beyond c + d (which two depends on d).
-// Fetched without branches (llvmpipe runs both sides of a branch).
+// that rule. The three vertices' 12 neighbours are 10 distinct samples: the quad's corners,
+// and for each vertex the two beyond it along the quad's sides. Fetched without branches
+// (llvmpipe runs both sides of a branch).
 const char* const kSlopeFromHeights =
+  "// The slopes at corner c + o of quad c, its corners' heights q00 .. q11 fetched.\n"
+  "vec2 gmmCornerSlope(ivec2 c, ivec2 o, float q00, float q10, float q01, float q11)\n"
+  "{\n"
+  "  bool west = o.x == 0, south = o.y == 0;\n"
+  "  float hc = south ? (west ? q00 : q10) : (west ? q01 : q11);\n"
+  "  float inX = south ? (west ? q10 : q00) : (west ? q11 : q01); // across the quad\n"
+  "  float inY = west ? (south ? q01 : q00) : (south ? q11 : q10);\n"
+  "  float outX = gmmHeightIn(c + ivec2(west ? -1 : 2, o.y)); // beyond it\n"
+  "  float outY = gmmHeightIn(c + ivec2(o.x, south ? -1 : 2));\n"
+  "  return gmmSlope(c + o, hc, west ? outX : inX, west ? inX : outX, south ? outY : inY,\n"
+  "    south ? inY : outY);\n"
+  "}\n"
   "void gmmTriangleSlopes(GmmTri t, out vec2 s0, out vec2 s1, out vec2 s2)\n"
   "{\n"
   "  ivec2 c = t.c;\n"
-  "  bool lower = t.d.x == 1; // d = (1, 0)\n"
-  "  float h00 = gmmHeightIn(c), h10 = gmmHeightIn(c + ivec2(1, 0));\n"
-  "  float h01 = gmmHeightIn(c + ivec2(0, 1)), h11 = gmmHeightIn(c + ivec2(1, 1));\n"
-  "  float hw = gmmHeightIn(c - ivec2(1, 0)), hs = gmmHeightIn(c - ivec2(0, 1));\n"
-  "  float he = gmmHeightIn(c + ivec2(2, 1)), hn = gmmHeightIn(c + ivec2(1, 2));\n"
-  "  // c + d's two neighbours outside the quad: east and south for (1, 0), west and north\n"
-  "  float hx = gmmHeightIn(c + (lower ? ivec2(2, 0) : ivec2(-1, 1)));\n"
-  "  float hy = gmmHeightIn(c + (lower ? ivec2(1, -1) : ivec2(0, 2)));\n"
-  "  s0 = gmmSlope(c, h00, hw, h10, hs, h01);\n"
-  "  s1 = lower ? gmmSlope(c + t.d, h10, h00, hx, hy, h11) : gmmSlope(c + t.d, h01, hx, h11, h00, hy);\n"
-  "  s2 = gmmSlope(c + ivec2(1), h11, h01, he, h10, hn);\n"
+  "  float q00 = gmmHeightIn(c), q10 = gmmHeightIn(c + ivec2(1, 0));\n"
+  "  float q01 = gmmHeightIn(c + ivec2(0, 1)), q11 = gmmHeightIn(c + ivec2(1, 1));\n"
+  "  s0 = gmmCornerSlope(c, t.o0, q00, q10, q01, q11);\n"
+  "  s1 = gmmCornerSlope(c, t.o1, q00, q10, q01, q11);\n"
+  "  s2 = gmmCornerSlope(c, t.o2, q00, q10, q01, q11);\n"
   "}\n";
 // VertexNormals: the full-resolution normal at the vertex's own sample, by the same rule
 // (four neighbours fetched a vertex), interpolated across the triangle by VTK's own
@@ -217,7 +229,8 @@ const char* const kDrape =
 // the block of sample (i, j) from its column's and row's entries in gmmSampleBands (the
 // band search of Quadtree.h's bandOfSample, tabulated: vtkGeoMipMapMorphTexture.h), then the edge
 // or the block it lies on, its target level and factor, and the target: the edge polyline
-// at that level, or the block's cell at that level split as Tessellate splits it.
+// at that level, or the block's cell at that level split as Tessellate splits it
+// (gmm::ringCellAntiDiagonal, Levels.h).
 const char* const kMorph =
   "uniform highp sampler2D gmmMorph;\n"
   "uniform ivec2 gmmMorphLayout; // block columns, rows\n"
@@ -250,7 +263,9 @@ const char* const kMorph =
   "  int ib = min(ia + step, i1), jb = min(ja + step, j1);\n"
   "  int k = (i1 - i0 + step - 1) >> level, L = (j1 - j0 + step - 1) >> level;\n"
   "  bool ring = step < i1 - i0 && step < j1 - j0;\n"
-  "  bool anti = ring ? (u == k - 1 && v == 0) || (u == 0 && v == L - 1) : oneQuadAnti;\n"
+  "  bool corner = (u == 0 || u == k - 1) && (v == 0 || v == L - 1);\n"
+  "  bool anti = ring ? (corner ? (u == k - 1 && v == 0) || (u == 0 && v == L - 1) : ((u + v) & 1) == 1)\n"
+  "                   : oneQuadAnti;\n"
   "  float fx = float(ij.x - ia) / float(ib - ia), fy = float(ij.y - ja) / float(jb - ja);\n"
   "  float h00 = gmmHeight(ivec2(ia, ja)), h10 = gmmHeight(ivec2(ib, ja));\n"
   "  float h01 = gmmHeight(ivec2(ia, jb)), h11 = gmmHeight(ivec2(ib, jb));\n"
@@ -328,15 +343,15 @@ std::string ColorFunctions(const vtkGeoMipMapShaders::Options& o)
         "float gmmScalar(ivec2 ij) { return texelFetch(gmmScalars, gmmTexel(ij), 0).r; }\n"
         "vec4 gmmColor(GmmTri t)\n"
         "{\n"
-        "  return gmmMapScalar(t.w.x * gmmScalar(t.c) + t.w.y * gmmScalar(t.c + t.d) +\n"
-        "    t.w.z * gmmScalar(t.c + ivec2(1)));\n"
+        "  return gmmMapScalar(t.w.x * gmmScalar(t.c + t.o0) + t.w.y * gmmScalar(t.c + t.o1) +\n"
+        "    t.w.z * gmmScalar(t.c + t.o2));\n"
         "}\n";
     case O::DirectColors:
       return "uniform highp sampler2DArray gmmColors;\n"
              "vec4 gmmRGBA(ivec2 ij) { return texelFetch(gmmColors, gmmTexel(ij), 0); }\n"
              "vec4 gmmColor(GmmTri t)\n"
              "{\n"
-             "  return t.w.x * gmmRGBA(t.c) + t.w.y * gmmRGBA(t.c + t.d) + t.w.z * gmmRGBA(t.c + ivec2(1));\n"
+             "  return t.w.x * gmmRGBA(t.c + t.o0) + t.w.y * gmmRGBA(t.c + t.o1) + t.w.z * gmmRGBA(t.c + t.o2);\n"
              "}\n";
     default:
       return std::string();

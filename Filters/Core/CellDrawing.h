@@ -4,6 +4,7 @@
 #pragma once
 
 #include "HoleCells.h"
+#include "Levels.h"
 #include "Tessellate.h"
 
 #include <algorithm>
@@ -141,8 +142,9 @@ void drawCellFan(Sink& sink, int i0, int j0, int i1, int j1, const bool fine[4],
 }
 
 // A ring block with nodata, cell by cell over its whole extent (HoleCells.h): quads with a
-// nodata corner as at full resolution, cells with no vertex but their corners as drawInnerGrid
-// draws them, the others over their vertices (drawCellPerimeter).
+// nodata corner as at full resolution, cells with no vertex but their corners as two
+// triangles on their (i0, j0)-(i1, j1) diagonal (a block with nodata never morphs, so its
+// coarse cells need not nest), the others over their vertices (drawCellPerimeter).
 template <typename Sink>
 void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoint>& perimeter,
   EmitSides& sides)
@@ -151,7 +153,7 @@ void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoi
   {
     if (c.nodata)
     {
-      sink.quad(c.i0, c.j0, c.i1, c.j1);
+      sink.quad(c.i0, c.j0, c.i1, c.j1, fullResolutionAntiDiagonal(c.i0, c.j0)); // as level 0 draws it
       continue;
     }
     // Counter-clockwise from the south-west corner, each corner once; a side has vertices
@@ -180,7 +182,7 @@ void drawAreaAroundHoles(Sink& sink, const HoleCells& cells, std::vector<GridPoi
     inside[West] = perimeter.size() - start > 1;
     if (perimeter.size() == 4)
     {
-      sink.quad(c.i0, c.j0, c.i1, c.j1); // only its corners: as drawInnerGrid draws a clean block
+      sink.quad(c.i0, c.j0, c.i1, c.j1); // only its corners: two triangles
       continue;
     }
     drawCellPerimeter(sink, c.i0, c.j0, c.i1, c.j1, inside, perimeter, sides);

@@ -255,12 +255,21 @@ std::size_t holeCellsTriangleCount(const HoleCells& cells)
   {
     if (cell.nodata)
     {
-      // Drawn as at full resolution (TriangleSinks.h, quad), less the triangles with a
-      // nodata corner, which are dropped.
+      // Drawn as at full resolution (TriangleSinks.h, quad, split by
+      // fullResolutionAntiDiagonal), less the triangles with a nodata corner, which are
+      // dropped.
       const bool sw = isNodata(cells, cell.i0, cell.j0), se = isNodata(cells, cell.i1, cell.j0);
       const bool ne = isNodata(cells, cell.i1, cell.j1), nw = isNodata(cells, cell.i0, cell.j1);
-      n += (sw || se || ne) ? 0 : 1;
-      n += (sw || ne || nw) ? 0 : 1;
+      if (fullResolutionAntiDiagonal(cell.i0, cell.j0))
+      {
+        n += (sw || se || nw) ? 0 : 1;
+        n += (se || ne || nw) ? 0 : 1;
+      }
+      else
+      {
+        n += (sw || se || ne) ? 0 : 1;
+        n += (sw || ne || nw) ? 0 : 1;
+      }
       continue;
     }
     int count[4];

@@ -33,7 +33,7 @@
 // do: no crack or T-junction. A cell is drawn as
 //   a full-resolution quad: one quad with a nodata corner (drawn, and dropped, as at full
 //                           resolution: the data's own hole);
-//   two triangles:          no vertex but its corners (as drawInnerGrid draws a clean block);
+//   two triangles:          no vertex but its corners (on its (i0, j0)-(i1, j1) diagonal);
 //   two fewer triangles than vertices otherwise: a fan from a corner between two sides with
 //                           no vertex inside them (coarseCorner), else (two opposite sides
 //                           have vertices) a strip that zigzags between those two sides,

@@ -101,6 +101,43 @@ inline void edgeSamples(int first, int last, int level, std::vector<int>& out)
   out.push_back(last);
 }
 
+// How a ring block splits its regular cells, at every level (the union-jack rule): cell
+// (u, v) of the block's level grid, counted from its south-west corner, on its
+// (i1, j0)-(i0, j1) diagonal when u + v is odd, else on its (i0, j0)-(i1, j1) one. A level
+// then nests in the next coarser one wherever the block's step divides it (a power-of-two
+// block): each coarse cell is four fine cells whose splits lie along its own, so a level
+// drawn with its vertices moved onto the coarser level's surface is that surface
+// (Documentation/decisions/002-levels-that-nest.md). With an even number of cells a side,
+// the rule also splits the ring's corner cells as the side strips meet there (SW and NE on
+// the first diagonal, SE and NW on the second: ringCellAntiDiagonal).
+inline bool cellAntiDiagonal(int u, int v)
+{
+  return ((u + v) & 1) != 0;
+}
+
+// The split of full-resolution quad (i, i + 1) x (j, j + 1) of the DEM: the union-jack
+// rule counted from the DEM's first sample. Bands start on even samples (splitBands,
+// Quadtree.h), so this is also every block's own rule at level 0: the full-resolution
+// surface (RayCast.h) is what level 0 draws.
+inline bool fullResolutionAntiDiagonal(int i, int j)
+{
+  return cellAntiDiagonal(i, j);
+}
+
+// The split of cell (u, v) of a ring block with nu x nv cells at its level, as Tessellate
+// draws it: the corner cells as the side strips meet there (from the block's corner to the
+// inner ring's corner: SE and NW on the (i1, j0)-(i0, j1) diagonal), the others by
+// cellAntiDiagonal. The two agree everywhere when nu and nv are even.
+inline bool ringCellAntiDiagonal(int u, int v, int nu, int nv)
+{
+  const bool west = u == 0, east = u == nu - 1, south = v == 0, north = v == nv - 1;
+  if ((west || east) && (south || north))
+  {
+    return (east && south) || (west && north);
+  }
+  return cellAntiDiagonal(u, v);
+}
+
 // Number of samples edgeSamples would produce.
 int edgeSampleCount(int first, int last, int level);
 

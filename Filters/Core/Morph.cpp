@@ -41,7 +41,9 @@ double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int
   const long long ib = std::min<long long>(ia + step, i1), jb = std::min<long long>(ja + step, j1);
   const long long k = (i1 - i0 + step - 1) / step, L = (j1 - j0 + step - 1) / step; // cells per side
   const bool ring = blockShape(i1 - i0, j1 - j0, level) == BlockShape::Ring;
-  const bool anti = ring ? (u == k - 1 && v == 0) || (u == 0 && v == L - 1) : oneQuadAnti;
+  const bool anti = ring ? ringCellAntiDiagonal(static_cast<int>(u), static_cast<int>(v), static_cast<int>(k),
+                             static_cast<int>(L))
+                        : oneQuadAnti;
   const double fx = static_cast<double>(i - ia) / static_cast<double>(ib - ia);
   const double fy = static_cast<double>(j - ja) / static_cast<double>(jb - ja);
   const double h00 = hf.height(int(ia), int(ja)), h10 = hf.height(int(ib), int(ja));

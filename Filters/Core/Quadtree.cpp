@@ -21,7 +21,9 @@ void splitInto(int begin, int end, int maxQuads, std::vector<int>& starts)
     starts.push_back(begin);
     return;
   }
-  const int mid = begin + quads / 2; // halve, rounding down (Poyart 3.1)
+  // Halve (Poyart 3.1), the first half rounded down to an even number of quads, so that
+  // every band starts on an even sample (splitBands).
+  const int mid = begin + std::max(2, quads / 4 * 2);
   splitInto(begin, mid, maxQuads, starts);
   splitInto(mid, end, maxQuads, starts);
 }
@@ -137,8 +139,11 @@ std::string validateBlockSize(int maxBlockQuads)
 
 std::vector<int> splitBands(int quads, int maxQuads, int lowCollar, int highCollar)
 {
+  // Collars widened to keep the bands between them starting on even samples.
   lowCollar = std::max(lowCollar, 0);
+  lowCollar += lowCollar & 1;
   highCollar = std::max(highCollar, 0);
+  highCollar += highCollar > 0 ? (quads - highCollar) & 1 : 0;
   if (quads - lowCollar - highCollar < kMinBlockQuads)
   {
     lowCollar = highCollar = 0;

@@ -199,11 +199,15 @@ constexpr int kDefaultBlockQuads = 32;
 // "" when maxBlockQuads is a usable block size (>= kMinBlockQuads), else the reason.
 std::string validateBlockSize(int maxBlockQuads);
 
-// Splits [0, quads] into bands of at most maxQuads quads by recursive halving (rounding
-// down). Returns band start positions plus the end (so size = bands + 1). Non-zero collars
-// (nodataCollar) first take a band of that many quads at the low and the high end, and
-// the quads between are halved as above; a collar that would leave fewer than
-// kMinBlockQuads quads between is dropped.
+// Splits [0, quads] into bands of at most maxQuads quads by recursive halving, the first
+// half rounded down to an even number of quads. Returns band start positions plus the end
+// (so size = bands + 1). Non-zero collars (nodataCollar) first take a band of that many
+// quads at the low and the high end, one more where that keeps the next band's start even,
+// and the quads between are halved as above; a collar that would leave fewer than
+// kMinBlockQuads quads between is dropped. Every band starts on an even sample: a block's
+// full-resolution cells are then split as the DEM's (the union-jack rule, cellAntiDiagonal
+// in Levels.h, is the same counted from the block's corner or from the DEM's), so level 0
+// is one triangulation of the whole DEM (RayCast.h).
 std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0);
 
 // Band index of sample s in band starts `start` (splitBands' form, bands + 1 entries): the

@@ -1,5 +1,7 @@
 #include "RasterError.h"
 
+#include "Levels.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -247,11 +249,20 @@ double triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, 
 
 // Residual (h - surface) * s^2 of sample (I0 + u, J0 + v) in the cell of side s whose
 // corner heights relative to z00 are d10 = z(s, 0) - z00, d11, d01. The cell is split
-// along its (0, 0)-(s, s) diagonal as TriangleSink::quad does; the weights are the very
-// integers triangleError derives for those two triangles, so the arithmetic is the same.
+// along its (0, 0)-(s, s) diagonal, or with `anti` its (s, 0)-(0, s) one, as
+// TriangleSink::quad does; the weights are the very integers triangleError derives for
+// those triangles, so the arithmetic is the same.
 inline double cellResidual(double h, double z00, double area, int64_t s, int64_t u, int64_t v,
-  double d10, double d11, double d01)
+  double d10, double d11, double d01, bool anti)
 {
+  if (anti)
+  {
+    return u + v <= s
+      ? (h - z00) * area - (static_cast<double>(s * u) * d10 + static_cast<double>(s * v) * d01)
+      : (h - z00) * area -
+        (static_cast<double>(s * (s - v)) * d10 + static_cast<double>(s * (u + v - s)) * d11 +
+          static_cast<double>(s * (s - u)) * d01);
+  }
   return u >= v
     ? (h - z00) * area - (static_cast<double>(s * (u - v)) * d10 + static_cast<double>(s * v) * d11)
     : (h - z00) * area - (static_cast<double>(s * u) * d11 + static_cast<double>(s * (v - u)) * d01);
@@ -291,11 +302,13 @@ float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std
       const double z00 = row0[I0];
       const double d10 = row0[I0 + s] - z00, d11 = row1[I0 + s] - z00, d01 = row1[I0] - z00;
       const int64_t uEnd = cu + 1 < cellsX ? s - 1 : s;
+      // Cell (cu + 1, cv + 1) of the block's level grid (the inner grid starts one cell in).
+      const bool anti = cellAntiDiagonal(static_cast<int>(cu + 1), static_cast<int>(cv + 1));
       for (int64_t u = 0; u <= uEnd; ++u)
       {
         const float h = row[I0 + u];
         nodata |= std::isnan(h);
-        worst = std::max(worst, std::abs(cellResidual(h, z00, area, s, u, v, d10, d11, d01)));
+        worst = std::max(worst, std::abs(cellResidual(h, z00, area, s, u, v, d10, d11, d01, anti)));
       }
     }
   }

@@ -1,5 +1,7 @@
 #include "RayCast.h"
 
+#include "Levels.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -192,9 +194,14 @@ private:
   bool testQuad(int i, int j)
   {
     bool found = false;
-    // The tessellation's split: (i, j)-(i+1, j)-(i+1, j+1) and (i, j)-(i+1, j+1)-(i, j+1).
-    const int tri[2][3][2] = { { { 0, 0 }, { 1, 0 }, { 1, 1 } }, { { 0, 0 }, { 1, 1 }, { 0, 1 } } };
-    for (const auto& v : tri)
+    // The tessellation's split at full resolution (fullResolutionAntiDiagonal): (i, j)-(i+1, j)-
+    // (i+1, j+1) and (i, j)-(i+1, j+1)-(i, j+1), or (i, j)-(i+1, j)-(i, j+1) and
+    // (i+1, j)-(i+1, j+1)-(i, j+1).
+    static constexpr int split[2][2][3][2] = {
+      { { { 0, 0 }, { 1, 0 }, { 1, 1 } }, { { 0, 0 }, { 1, 1 }, { 0, 1 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0, 1 } }, { { 1, 0 }, { 1, 1 }, { 0, 1 } } },
+    };
+    for (const auto& v : split[fullResolutionAntiDiagonal(i, j) ? 1 : 0])
     {
       found = testTriangle(i, j, v) || found;
     }
@@ -273,10 +280,20 @@ double heightAt(const Heightfield& hf, double x, double y, double heightScale)
   }
   const int i = std::min(static_cast<int>(gx), hf.nx - 2), j = std::min(static_cast<int>(gy), hf.ny - 2);
   const double fx = gx - i, fy = gy - j;
-  const double a = hf.height(i, j), c = hf.height(i + 1, j + 1);
-  // Below the diagonal: triangle (i, j), (i+1, j), (i+1, j+1); above: (i, j), (i+1, j+1), (i, j+1).
-  const double h = fx >= fy ? a + fx * (hf.height(i + 1, j) - a) + fy * (c - hf.height(i + 1, j))
-                            : a + fy * (hf.height(i, j + 1) - a) + fx * (c - hf.height(i, j + 1));
+  const double h00 = hf.height(i, j), h10 = hf.height(i + 1, j), h01 = hf.height(i, j + 1);
+  const double h11 = hf.height(i + 1, j + 1);
+  double h;
+  if (!fullResolutionAntiDiagonal(i, j))
+  {
+    // Below the diagonal: triangle (i, j), (i+1, j), (i+1, j+1); above: (i, j), (i+1, j+1), (i, j+1).
+    h = fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
+  }
+  else
+  {
+    // Split along (i+1, j)-(i, j+1): triangle (i, j), (i+1, j), (i, j+1) below it, the other above.
+    h = fx + fy <= 1.0 ? h00 + fx * (h10 - h00) + fy * (h01 - h00)
+                       : h11 + (1.0 - fx) * (h01 - h11) + (1.0 - fy) * (h10 - h11);
+  }
   return std::isnan(h) ? nan : hf.z0 + heightScale * h;
 }
 

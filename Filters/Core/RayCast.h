@@ -1,8 +1,9 @@
 // Exact queries on the full-resolution surface, independent of any level of detail: the
 // height under a point and the first hit of a segment. The surface is the level-0
-// triangulation the tessellation draws (each grid quad split along its (i, j)-(i+1, j+1)
-// diagonal; triangles touching nodata are holes), at z = z0 + heightScale * h in the
-// heightfield's data frame.
+// triangulation the tessellation draws (the union jack: quad (i, j) split along its
+// (i, j)-(i+1, j+1) diagonal where i + j is even, along (i+1, j)-(i, j+1) where it is odd,
+// fullResolutionAntiDiagonal in Levels.h; triangles touching nodata are holes), at
+// z = z0 + heightScale * h in the heightfield's data frame.
 #pragma once
 
 #include "Terrain.h"

@@ -6,6 +6,7 @@
 
 #include "CellDrawing.h"
 #include "GridTypes.h"
+#include "Levels.h"
 #include "Tessellate.h"
 
 #include <vector>
@@ -13,23 +14,26 @@
 namespace gmm
 {
 
-// One row band of the inner grid: quads between rows ja and jb over columns cols[0..count).
+// One row band of the inner grid: quads between rows ja and jb over columns cols[0..count),
+// the first of them cell (u0, v) of the block's level grid, each split by the union-jack
+// rule (cellAntiDiagonal, Levels.h).
 template <typename Sink>
-void drawHStrip(Sink& sink, const int* cols, std::size_t count, int ja, int jb)
+void drawHStrip(Sink& sink, const int* cols, std::size_t count, int ja, int jb, int u0, int v)
 {
   for (std::size_t u = 0; u + 1 < count; ++u)
   {
-    sink.quad(cols[u], ja, cols[u + 1], jb);
+    sink.quad(cols[u], ja, cols[u + 1], jb, cellAntiDiagonal(u0 + static_cast<int>(u), v));
   }
 }
 
-// Inner grid of a ring block: samples cols[1..k-1] x rows[1..L-1] at the block's own step.
+// Inner grid of a ring block: samples cols[1..k-1] x rows[1..L-1] at the block's own step,
+// cells (1, 1) .. (k - 2, L - 2) of its level grid.
 template <typename Sink>
 void drawInnerGrid(Sink& sink, const std::vector<int>& C, const std::vector<int>& R)
 {
   for (std::size_t t = 1; t + 2 < R.size(); ++t)
   {
-    drawHStrip(sink, C.data() + 1, C.size() - 2, R[t], R[t + 1]);
+    drawHStrip(sink, C.data() + 1, C.size() - 2, R[t], R[t + 1], 1, static_cast<int>(t));
   }
 }
 
@@ -57,16 +61,16 @@ void drawFan(Sink& sink, GridPoint apex, const std::vector<GridPoint>& run,
 // position along the side. The merge advances whichever polyline's next point comes first,
 // which cuts the strip into alternating fans: any edge level joins any inner level. When
 // the next outer and inner points are level (a regular quad, as when both sides have the
-// block's level), `innerFirst` picks the quad's diagonal: the merge then splits it along
-// the same (i, j)-(i+1, j+1) diagonal as the inner grid, so that a block with its own edges
-// draws one regular triangulation (at level 0, exactly the full-resolution one).
-template <typename Sink, typename Along>
+// block's level), `innerFirstAt(x)`, x the quad's far end along the side, picks the quad's
+// diagonal: the merge then splits it as the inner grid splits its cells (the union-jack
+// rule), so that a block with its own edges draws one regular triangulation.
+template <typename Sink, typename Along, typename InnerFirstAt>
 void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
   const std::vector<GridPoint>& inner, std::size_t first, std::size_t last, Along along,
-  bool innerFirst)
+  InnerFirstAt innerFirstAt)
 {
   // True when the outer point at position x is to be joined before the inner one at y.
-  auto outerBefore = [innerFirst](int x, int y) { return innerFirst ? x < y : x <= y; };
+  auto outerBefore = [&innerFirstAt](int x, int y) { return x < y || (x == y && !innerFirstAt(x)); };
   std::size_t a = 0, b = first;
   while (a + 1 < outer.size() || b < last)
   {
@@ -103,9 +107,18 @@ void drawSideStrip(Sink& sink, const std::vector<GridPoint>& outer,
 // along the border and diagonal choice. A strip that ends on the block's border (a block
 // with nodata whose neighbouring side has no strip, HoleCells.h) first fans that end's
 // border samples from the inner line's second (second-last) point, and joins the rest.
+// A regular quad of the strip is cell (u, v) of the block's level grid (lines.ring): the
+// merge takes the inner point first, which splits it on its (i0, j0)-(i1, j1) diagonal on
+// the south and north sides and on the other one on the east and west sides, unless
+// cellAntiDiagonal turns it.
 template <typename Sink>
 void drawSideLines(Sink& sink, const EmitScratch& lines, int side)
 {
+  const RingGrid& g = lines.ring;
+  const int step = 1 << g.level;
+  // The cell under a regular quad whose far end along the side is at x (its along value).
+  auto cellBefore = [step](int x, int origin) { return (x - origin + step - 1) / step - 1; };
+  auto cellFrom = [step](int x, int origin) { return (x - origin) / step; };
   const std::vector<GridPoint>& outer = lines.outer;
   const std::vector<GridPoint>& inner = lines.inner;
   std::size_t first = 0, last = inner.size() - 1;
@@ -124,16 +137,20 @@ void drawSideLines(Sink& sink, const EmitScratch& lines, int side)
   switch (side)
   {
     case South:
-      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return p.i; }, true);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return p.i; },
+        [&](int x) { return !cellAntiDiagonal(cellBefore(x, g.i0), 0); });
       break;
     case East:
-      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return p.j; }, false);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return p.j; },
+        [&](int x) { return cellAntiDiagonal(g.cellsU - 1, cellBefore(x, g.j0)); });
       break;
     case North:
-      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return -p.i; }, true);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return -p.i; },
+        [&](int x) { return !cellAntiDiagonal(cellFrom(-x, g.i0), g.cellsV - 1); });
       break;
     default: // West
-      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return -p.j; }, false);
+      drawSideStrip(sink, outer, inner, first, last, [](GridPoint p) { return -p.j; },
+        [&](int x) { return cellAntiDiagonal(0, cellFrom(-x, g.j0)); });
       break;
   }
 }

@@ -40,8 +40,10 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // such a side follows the edge levels, as one-quad blocks' sides beside nodata do
 // (Quadtree::sideAtFullResolutionAt), which changes their errors and their neighbours';
 // 12: triangle counts leave out what nodata drops, which changes which levels of a block
-// with nodata draw fewer triangles than a finer one, so are allowed.
-constexpr uint32_t kFormatVersion = 12;
+// with nodata draw fewer triangles than a finer one, so are allowed; 13: ring blocks split
+// their cells by the union-jack rule (cellAntiDiagonal, Levels.h), which changes their
+// errors at every level above 0, and bands start on even samples (splitBands).
+constexpr uint32_t kFormatVersion = 13;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

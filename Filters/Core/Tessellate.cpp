@@ -54,9 +54,11 @@ int innerRingAt(const BlockRect& r, int side, int level)
 // the side, at innerRingAt), or with `cells` (a block with nodata, whose border row along
 // this side is clear of it), the cells' vertices along the row's inner line, and the
 // strip's ends on the block's border (stripEnds).
-void sideLines(const BlockRect& r, const std::vector<int>& along, int innerAt, int side,
+void sideLines(const BlockRect& r, int level, const std::vector<int>& along, int innerAt, int side,
   int edgeLevel, EmitScratch& scratch, const HoleCells* cells)
 {
+  scratch.ring = RingGrid{ r.i0, r.j0, level, edgeSampleCount(r.i0, r.i1, level) - 1,
+    edgeSampleCount(r.j0, r.j1, level) - 1 };
   std::vector<int>& edge = scratch.edge;
   std::vector<GridPoint>& outer = scratch.outer;
   std::vector<GridPoint>& inner = scratch.inner;
@@ -153,23 +155,14 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
         drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner, scratch.sides);
         return;
       }
-      if (oneQuadAntiDiagonal(qt, block))
-      {
-        // The quad split along its (i1, j0)-(i0, j1) diagonal.
-        sink.triangle({ r.i0, r.j0 }, { r.i1, r.j0 }, { r.i0, r.j1 });
-        sink.triangle({ r.i1, r.j0 }, { r.i1, r.j1 }, { r.i0, r.j1 });
-      }
-      else
-      {
-        sink.quad(r.i0, r.j0, r.i1, r.j1);
-      }
+      sink.quad(r.i0, r.j0, r.i1, r.j1, oneQuadAntiDiagonal(qt, block));
       return;
     }
     // Thin: the DEM is one quad wide or tall, so the long sides have no neighbours and the
     // short sides are single quads: a plain full-resolution strip is crack-free.
     for (int j = r.j0; j < r.j1; ++j)
       for (int i = r.i0; i < r.i1; ++i)
-        sink.quad(i, j, i + 1, j + 1);
+        sink.quad(i, j, i + 1, j + 1, fullResolutionAntiDiagonal(i, j));
     return;
   }
   if (shape != BlockShape::Ring)
@@ -218,7 +211,8 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     if (parts.side[side] && (!cells || cells->strip[side]))
     {
       const std::vector<int>& along = side == South || side == North ? C : R;
-      sideLines(r, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side], scratch, cells);
+      sideLines(r, config.level, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side],
+        scratch, cells);
       drawSideLines(sink, scratch, side);
     }
   }
@@ -275,7 +269,8 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
 {
   const BlockRect r = blockRect(qt, block);
   const std::vector<int>& along = alongSide(r, side, config.level, scratch);
-  sideLines(r, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side], scratch, cells);
+  sideLines(r, config.level, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side], scratch,
+    cells);
 }
 
 void emitHoleCellsGrid(const HoleCells& cells, std::vector<GridTriangle>& out, EmitScratch& scratch)

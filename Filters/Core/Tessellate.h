@@ -66,8 +66,16 @@ struct EmitSides
 
 // Buffers emitBlock needs; a caller that emits many parts (the error table) keeps one so
 // that emitting allocates nothing once they have grown.
+// A ring block's level grid, as the side strips need it to split their regular quads
+// (drawSideLines): the block's south-west sample, its level, and its cells a side.
+struct RingGrid
+{
+  int i0 = 0, j0 = 0, level = 0, cellsU = 0, cellsV = 0;
+};
+
 struct EmitScratch
 {
+  RingGrid ring; // of the block whose side lines are in outer / inner (sidePolylines)
   std::vector<int> cols, rows, edge;
   std::vector<GridPoint> outer, inner;
   std::vector<GridPoint> stripStart, stripEnd; // a side strip's ends on the border (HoleCells.h)

@@ -13,6 +13,23 @@
 namespace gmm
 {
 
+// The two triangles of quad (i0, j0)-(i1, j1), counter-clockwise, split along its
+// (i0, j0)-(i1, j1) diagonal or, when `anti`, its (i1, j0)-(i0, j1) one.
+template <typename Sink>
+void splitQuad(Sink& sink, int i0, int j0, int i1, int j1, bool anti)
+{
+  if (anti)
+  {
+    sink.triangle({ i0, j0 }, { i1, j0 }, { i0, j1 });
+    sink.triangle({ i1, j0 }, { i1, j1 }, { i0, j1 });
+  }
+  else
+  {
+    sink.triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
+    sink.triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
+  }
+}
+
 // Collects triangles for one block: converts grid points to vertex indices, drops triangles
 // touching nodata unless asked to keep them, and keeps counter-clockwise world winding.
 class TriangleSink
@@ -43,12 +60,9 @@ public:
     out_.push_back(mirrored_ ? ib : ic);
   }
 
-  // Quad with corners (i0, j0)-(i1, j1), split along its (i0, j0)-(i1, j1) diagonal.
-  void quad(int i0, int j0, int i1, int j1)
-  {
-    triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
-    triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
-  }
+  // Quad with corners (i0, j0)-(i1, j1), split along its (i0, j0)-(i1, j1) diagonal, or its
+  // (i1, j0)-(i0, j1) one when `anti` (cellAntiDiagonal, Levels.h).
+  void quad(int i0, int j0, int i1, int j1, bool anti = false) { splitQuad(*this, i0, j0, i1, j1, anti); }
 
 private:
   const Heightfield& hf_;
@@ -67,11 +81,7 @@ public:
   {
   }
   void triangle(GridPoint a, GridPoint b, GridPoint c) { out_.push_back(GridTriangle{ { a, b, c } }); }
-  void quad(int i0, int j0, int i1, int j1)
-  {
-    triangle({ i0, j0 }, { i1, j0 }, { i1, j1 });
-    triangle({ i0, j0 }, { i1, j1 }, { i0, j1 });
-  }
+  void quad(int i0, int j0, int i1, int j1, bool anti = false) { splitQuad(*this, i0, j0, i1, j1, anti); }
 
 private:
   std::vector<GridTriangle>& out_;

@@ -162,7 +162,8 @@ inline std::size_t coarsestTriangles(const gmm::Quadtree& qt, bool mergedNodes =
   return sum;
 }
 
-// Reference recursive halving (Quadtree.h): first half = floor(q / 2).
+// Reference recursive halving (Quadtree.h): the first half the largest even number of quads
+// not above q / 2.
 inline void refSplit(int start, int quads, int maxQuads, std::vector<int>& starts)
 {
   if (quads <= maxQuads)
@@ -170,14 +171,23 @@ inline void refSplit(int start, int quads, int maxQuads, std::vector<int>& start
     starts.push_back(start);
     return;
   }
-  const int a = quads / 2;
+  int a = quads / 2;
+  if (a % 2 == 1)
+    --a;
+  if (a < 2)
+    a = 2; // 3 quads over a block size below the minimum: 2 + 1
   refSplit(start, a, maxQuads, starts);
   refSplit(start + a, quads - a, maxQuads, starts);
 }
-// With collars (Quadtree.h, splitBands): a band of each collar at the ends, the quads
-// between halved; both collars dropped when fewer than 4 quads would be left between.
+// With collars (Quadtree.h, splitBands): a band of each collar at the ends, widened by one
+// quad where the band after (before) it would start on an odd sample, the quads between
+// halved; both collars dropped when fewer than 4 quads would be left between.
 inline std::vector<int> refSplitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0)
 {
+  if (lowCollar % 2 == 1)
+    ++lowCollar;
+  if (highCollar > 0 && (quads - highCollar) % 2 == 1)
+    ++highCollar;
   if (quads - lowCollar - highCollar < 4)
     lowCollar = highCollar = 0;
   std::vector<int> s;

@@ -298,12 +298,13 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   //   two beside [12, 16]^2, whose side has that cell's split point at 14: 3 each),
   //   [12, 16]^2 into three clean 2-quad cells (2, 3, 3) and [14, 16]^2 into three clean
   //   quads (2 each) and the quad holding (16, 16): 22 triangles; the other three cells
-  //   are its mirror images. Of the four quads with (16, 16) as a corner, 2 of their 8
-  //   triangles do not touch it: cells 4 x 22 + 2 = 90. Strips (one triangle per step
+  //   are its mirror images. The four quads with (16, 16) as a corner are split on the
+  //   diagonals through it (16 + 16 is even: the union-jack rule, Levels.h), so all 8 of
+  //   their triangles touch it: cells 4 x 22 = 88. Strips (one triangle per step
   //   along either line, Tessellate.h): the inner lines have the cells' corners 8, 12, 16,
   //   20, 24 (4 steps); the south and west edges lie on the DEM's border, at the level (4
   //   steps): 8 each; the east and north edges beside the one-quad blocks 1 and 2 are
-  //   their corners (1 step): 5 each. 90 + 2 x 8 + 2 x 5 = 116.
+  //   their corners (1 step): 5 each. 88 + 2 x 8 + 2 x 5 = 114.
   // - Level 4 is cells over the whole block, 234 triangles (levels 4 and 5 split into the
   //   same cells and draw the border at full resolution), more than level 3: not allowed,
   //   nor is 5. Level 2 draws more than 3 (cells over [4, 28]^2 of 4 quads).
@@ -320,7 +321,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 22 + 2 + 2 * (4 + 4) + 2 * (1 + 4)) + 3 * 2);
+  EXPECT_EQ(s.triangles, (4u * 22 + 2 * (4 + 4) + 2 * (1 + 4)) + 3 * 2);
   expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
@@ -339,18 +340,19 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   //   its east side: 3); [28, 32] x [12, 16] into [28, 30] x [12, 14] (2), [30, 32] x [12, 14]
   //   (border sample 13 and split point 31: 4), [28, 30] x [14, 16] (split point 15: 3) and
   //   [30, 32] x [14, 16] into three clean quads (2 each) and the quad holding (32, 16),
-  //   both of whose triangles touch it: 26. Its mirror image [24, 32] x [16, 24]: 26, and 1
-  //   triangle of its quad at the void does not touch it. Cells: 2 x 2 + 2 x 3 + 2 x 26 + 1.
+  //   both of whose triangles touch it: 26. Its mirror image [24, 32] x [16, 24]: 26, its
+  //   quad at the void split on the diagonal through it too (32 + 16 is even: the
+  //   union-jack rule, Levels.h). Cells: 2 x 2 + 2 x 3 + 2 x 26.
   // - Strips: the south one's edge on the DEM's border at the level (0 to 32: 4 steps), its
   //   inner line the cells' corners 8, 16, 24, 28, 32 (4 steps), and its east end on the
   //   block's border, j = 0 to 8 at full resolution, fanned from (28, 8): 7 triangles more:
   //   15. The north one's edge beside the one-quad block 2, its corners (1 step), 4 steps
   //   inside, 7 at its end: 12. The west one's edge on the DEM's border (4 steps), its
   //   inner line 24, 16, 8 (2 steps): 6.
-  // 96 triangles. Level 4 has strips on the west side alone, and its cells split as
+  // 95 triangles. Level 4 has strips on the west side alone, and its cells split as
   //   before (the two eastern 16-quad cells alone 55 each): more, not allowed, nor is 5;
-  //   level 2 has more cells. Block 1 is block 0's mirror image, and of its two quads at the
-  //   void 1 triangle does not touch it: 96. Blocks 2 and 3 take their one-quad level, 2
+  //   level 2 has more cells. Block 1 is block 0's mirror image, its two quads at the void
+  //   split on diagonals through it as well: 95. Blocks 2 and 3 take their one-quad level, 2
   //   triangles each: their sides beside blocks 0 and 1 follow those blocks' strips. Before
   //   the strips (session 12): blocks 0 and 1 at level 4, 177 each, and blocks 2 and 3
   //   fanned over their side at full resolution, 33 each.
@@ -362,6 +364,6 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   EXPECT_EQ(e.levels()[1], 3);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, 2u * ((2 * 2 + 2 * 3 + 2 * 26 + 1) + 15 + 12 + 6) + 2 * 2);
+  EXPECT_EQ(s.triangles, 2u * ((2 * 2 + 2 * 3 + 2 * 26) + 15 + 12 + 6) + 2 * 2);
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }

@@ -25,13 +25,22 @@ TEST(Quadtree, SplitBandsCoverAndRespectMax)
         EXPECT_GT(b[k + 1], b[k]) << "q=" << q << " max=" << maxQ;
         EXPECT_LE(b[k + 1] - b[k], maxQ) << "q=" << q << " max=" << maxQ;
       }
-      // recursive halving, rounding down (first half = floor(q/2))
+      // recursive halving, the first half rounded down to an even number of quads; every
+      // band starts on an even sample
       ASSERT_EQ(b, refSplitBands(q, maxQ)) << "q=" << q << " max=" << maxQ;
+      for (std::size_t k = 0; k + 1 < b.size(); ++k)
+        EXPECT_EQ(b[k] % 2, 0) << "q=" << q << " max=" << maxQ;
     }
   EXPECT_EQ(gmm::splitBands(64, 64), (std::vector<int>{ 0, 64 }));
   EXPECT_EQ(gmm::splitBands(65, 64), (std::vector<int>{ 0, 32, 65 }));
   EXPECT_EQ(gmm::splitBands(129, 64), (std::vector<int>{ 0, 64, 96, 129 }));
-  EXPECT_EQ(gmm::splitBands(7, 3), (std::vector<int>{ 0, 3, 5, 7 }));
+  EXPECT_EQ(gmm::splitBands(7, 3), (std::vector<int>{ 0, 2, 4, 7 }));
+  // An SRTM3 tile's 1200 quads: 600, 300, 150, then 74 + 76, 36 + 38 and 38 + 38, then
+  // 18 + 18, 18 + 20 and 18 + 20.
+  const std::vector<int> srtm3 = gmm::splitBands(1200, 32);
+  ASSERT_EQ(srtm3.size(), 65u);
+  EXPECT_EQ(std::vector<int>(srtm3.begin(), srtm3.begin() + 9),
+    (std::vector<int>{ 0, 18, 36, 54, 74, 92, 112, 130, 150 }));
 }
 
 namespace
@@ -240,9 +249,11 @@ TEST(Quadtree, UpperHalfBandsByHand)
 
 TEST(Quadtree, NodataCollarBandsByHand)
 {
-  // splitBands with collars: the collars first, the quads between halved as without them.
-  EXPECT_EQ(gmm::splitBands(100, 32, 12, 3), (std::vector<int>{ 0, 12, 33, 54, 75, 97, 100 }));
-  EXPECT_EQ(gmm::splitBands(100, 32, 0, 2), (std::vector<int>{ 0, 24, 49, 73, 98, 100 }));
+  // splitBands with collars: the collars first (3 quads at the high end would start on
+  // sample 97: widened to 4), the quads between halved as without them, the first half even
+  // (84 -> 42 + 42 -> 20 + 22, 20 + 22; 98 -> 48 + 50 -> 24 + 24, 24 + 26).
+  EXPECT_EQ(gmm::splitBands(100, 32, 12, 3), (std::vector<int>{ 0, 12, 32, 54, 74, 96, 100 }));
+  EXPECT_EQ(gmm::splitBands(100, 32, 0, 2), (std::vector<int>{ 0, 24, 48, 72, 98, 100 }));
   EXPECT_EQ(gmm::splitBands(10, 32, 4, 4), (std::vector<int>{ 0, 10 })) << "under 4 quads left";
 
   // A 101 x 81 plane with nodata wedges: row j starts with j % 12 nodata samples (widest
@@ -278,9 +289,11 @@ TEST(Quadtree, NodataCollarBandsByHand)
   EXPECT_EQ(gmm::nodataCollar(hf, 12).west, 8) << "at block 12 only runs up to 7 count";
   EXPECT_EQ(gmm::nodataCollar(hf, 4).west, 0) << "the smallest block has no collars";
 
+  // Columns: 86 quads between the collars, 42 + 44, then 20 + 22 and 22 + 22. Rows: the
+  // south collar of 3 widened to 4, then 76 quads, 38 + 38, then 18 + 20 each.
   const gmm::Quadtree qt = gmm::buildQuadtree(hf, 32);
-  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 12, 33, 55, 76, 98, 100 }));
-  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 3, 22, 41, 60, 80 }));
+  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 12, 32, 54, 76, 98, 100 }));
+  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 4, 22, 42, 60, 80 }));
   // The wedges lie in the collar bands, with a valid line between them and the inner
   // blocks: scanned here from the heights, the inner blocks' nodata, and that of the
   // collar bands' last line but one, is row 40's and column 50's only.

@@ -32,8 +32,11 @@ double bruteForce(const gmm::Heightfield& hf, double s, const double p0[3], cons
   for (int j = 0; j + 1 < hf.ny; ++j)
     for (int i = 0; i + 1 < hf.nx; ++i)
     {
-      const int tris[2][3][2] = { { { 0, 0 }, { 1, 0 }, { 1, 1 } }, { { 0, 0 }, { 1, 1 }, { 0, 1 } } };
-      for (const auto& tri : tris)
+      // The union jack: quad (i, j) split along (i, j)-(i+1, j+1) where i + j is even, along
+      // (i+1, j)-(i, j+1) where it is odd.
+      const int tris[2][2][3][2] = { { { { 0, 0 }, { 1, 0 }, { 1, 1 } }, { { 0, 0 }, { 1, 1 }, { 0, 1 } } },
+        { { { 0, 0 }, { 1, 0 }, { 0, 1 } }, { { 1, 0 }, { 1, 1 }, { 0, 1 } } } };
+      for (const auto& tri : tris[(i + j) % 2])
       {
         double a[3], b[3], c[3];
         if (!P(i + tri[0][0], j + tri[0][1], a) || !P(i + tri[1][0], j + tri[1][1], b) || !P(i + tri[2][0], j + tri[2][1], c))
@@ -82,10 +85,18 @@ TEST(RayCast, HeightAtHandComputed)
   hf.z0 = 0;
   EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 99.0, 201.0)));
   EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 101.0, 206.5)));
-  hf.z[4] = std::nanf(""); // (1, 1): every triangle touching it is a hole
-  EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 101.0, 200.75)));
-  EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 100.0, 200.0))); // its cell's triangles both touch (1, 1)
-  EXPECT_DOUBLE_EQ(gmm::heightAt(hf, 104.0, 200.0), 2.0);    // (2, 0): triangle (1,0)-(2,0)-(2,1)
+  // Cell (1, 0) (1 + 0 odd) is split along (2,0)-(1,1): at fx 0.5, fy 0.5 on that diagonal,
+  // (2 + 20) / 2 = 11.
+  EXPECT_DOUBLE_EQ(gmm::heightAt(hf, 103.0, 201.5), 11.0);
+  hf.z[4] = std::nanf(""); // (1, 1): all four cells' diagonals end there (1 + 1 even): every
+  EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 101.0, 200.75))); // triangle touching it is a hole
+  EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 100.0, 200.0)));
+  EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 104.0, 200.0))); // (2, 0): cell (1, 0) touches (1, 1) too
+  hf.z[4] = 20;
+  hf.z[3] = std::nanf(""); // (0, 1): only cell (0, 0)'s upper and cell (0, 1)'s lower triangle
+  EXPECT_DOUBLE_EQ(gmm::heightAt(hf, 101.0, 200.75), 5.25); // cell (0, 0)'s lower one stays
+  EXPECT_TRUE(std::isnan(gmm::heightAt(hf, 100.5, 201.5)));
+  EXPECT_DOUBLE_EQ(gmm::heightAt(hf, 103.0, 201.5), 11.0);
 }
 
 TEST(RayCast, FirstHitEqualsBruteForce)

@@ -66,20 +66,25 @@ TEST(TriangleCount, MatchesEmitBlockForEveryLevelAndEdges)
 }
 
 // With nodata emitBlock drops the triangles with a nodata corner: the count is what it draws,
-// by hand for one sample at full resolution (the 6 triangles around it: 2 in each of the
-// two quads whose diagonal ends there, 1 in the other two).
+// by hand for one sample at full resolution. Full resolution splits cell (u, v) on its
+// (u, v)-(u+1, v+1) diagonal where u + v is even, on the other one where it is odd (the
+// union-jack rule), so the four cells around a sample whose i + j is even all have a diagonal
+// ending there (8 triangles touch it), and around one whose i + j is odd none has (4).
 TEST(TriangleCount, CountsWhatBlocksWithNodataDraw)
 {
-  gmm::Heightfield hf = flatField(65, 65);
-  hf.z[hf.index(10, 10)] = std::numeric_limits<float>::quiet_NaN();
-  const gmm::Quadtree qt = gmm::buildQuadtree(hf, 32);
-  gmm::BlockConfig cfg;
-  cfg.level = 0;
-  cfg.edgeLevel = { 0, 0, 0, 0 };
-  std::vector<uint32_t> out;
-  gmm::emitBlock(hf, qt, 0, cfg, gmm::BlockPart::Whole, out);
-  EXPECT_EQ(out.size() / 3, 2u * 32 * 32 - 6);
-  EXPECT_EQ(gmm::blockTriangleCount(qt, 0, cfg), 2u * 32 * 32 - 6);
+  for (const auto& sample : { std::pair<int, std::size_t>{ 10, 8 }, std::pair<int, std::size_t>{ 11, 4 } })
+  {
+    gmm::Heightfield hf = flatField(65, 65);
+    hf.z[hf.index(10, sample.first)] = std::numeric_limits<float>::quiet_NaN();
+    const gmm::Quadtree qt = gmm::buildQuadtree(hf, 32);
+    gmm::BlockConfig cfg;
+    cfg.level = 0;
+    cfg.edgeLevel = { 0, 0, 0, 0 };
+    std::vector<uint32_t> out;
+    gmm::emitBlock(hf, qt, 0, cfg, gmm::BlockPart::Whole, out);
+    EXPECT_EQ(out.size() / 3, 2u * 32 * 32 - sample.second) << "nodata at (10, " << sample.first << ")";
+    EXPECT_EQ(gmm::blockTriangleCount(qt, 0, cfg), 2u * 32 * 32 - sample.second);
+  }
 }
 
 // Blocks with voids at coarse levels are drawn as cells (HoleCells.h) and side strips where

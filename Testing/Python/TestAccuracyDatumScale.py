@@ -154,10 +154,17 @@ def numpy_height(x, y, s=2.0):
         return float("nan")
     i, j = min(int(gx), 255), min(int(gy), 255)
     fx, fy = gx - i, gy - j
-    if fx >= fy:  # triangle (i, j), (i+1, j), (i+1, j+1)
-        h = (1 - fx) * z[j, i] + (fx - fy) * z[j, i + 1] + fy * z[j + 1, i + 1]
-    else:  # triangle (i, j), (i+1, j+1), (i, j+1)
-        h = (1 - fy) * z[j, i] + (fy - fx) * z[j + 1, i] + fx * z[j + 1, i + 1]
+    # The union jack: quad (i, j) split along (i, j)-(i+1, j+1) where i + j is even, along
+    # (i+1, j)-(i, j+1) where it is odd.
+    if (i + j) % 2 == 0:
+        if fx >= fy:  # triangle (i, j), (i+1, j), (i+1, j+1)
+            h = (1 - fx) * z[j, i] + (fx - fy) * z[j, i + 1] + fy * z[j + 1, i + 1]
+        else:  # triangle (i, j), (i+1, j+1), (i, j+1)
+            h = (1 - fy) * z[j, i] + (fy - fx) * z[j + 1, i] + fx * z[j + 1, i + 1]
+    elif fx + fy <= 1:  # triangle (i, j), (i+1, j), (i, j+1)
+        h = (1 - fx - fy) * z[j, i] + fx * z[j, i + 1] + fy * z[j + 1, i]
+    else:  # triangle (i+1, j), (i+1, j+1), (i, j+1)
+        h = (1 - fy) * z[j, i + 1] + (fx + fy - 1) * z[j + 1, i + 1] + (1 - fx) * z[j + 1, i]
     return s * h
 
 

@@ -1,7 +1,7 @@
 """GPU-resident heights (issue #10): tiling, 16-bit heights, colouring arrays, memory limits.
 
 Each case is checked against a stock full-resolution vtkPolyDataMapper of the same samples
-(refscene.reference_mesh: every valid quad, the engine's diagonal, normals from
+(refscene.reference_mesh: every valid quad, split as the engine splits it, normals from
 vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
 - tiling: a DEM split into many texture layers (MaximumTileSize 64, 5 x 3 layers) draws
   the same surface as one layer, bit for bit (depth buffers), and the same picture as the
@@ -228,9 +228,9 @@ for name, z in (("no nodata", np.round(zf).astype(np.float32)), ("a nodata hole"
 
 # Normals per vertex (VertexNormals): each drawn vertex takes its sample's full-resolution
 # normal and the triangle interpolates it. At tau 0 every drawn triangle is a level-0 half
-# quad, so the picture is the stock mapper's of the full-resolution mesh whose point normals
-# follow the same rule, computed here with numpy (geomipmap-bench's reference normals), but
-# for the strips' corner quads split along the other diagonal. SlopeTexture is overridden.
+# quad, so the picture is the stock mapper's of the full-resolution mesh (the union jack:
+# refscene.reference_mesh) whose point normals follow the same rule, computed here with numpy
+# (geomipmap-bench's reference normals). SlopeTexture is overridden.
 # With HeightScale 3 the reference is the mesh of the heights times 3.
 for name, z, scale in (("no nodata", np.round(zf).astype(np.float32), 1.0), ("a nodata hole", hole, 1.0),
                        ("HeightScale 3", np.round(zf).astype(np.float32), 3.0)):

@@ -80,6 +80,13 @@ win.Render()
 full = mapper.GetNumberOfRenderedTriangles()
 check(mapper.GetTriangleBudgetInForce() == 0, "no budget by default")
 check(full > 20000, f"tau-driven frame draws {full} triangles")
+# A budgeted frame follows no geomorphing level path (its levels are the coarsest within its
+# error): the tau-driven frame it reduces to when tau stops first is the one without the path.
+mapper.SetGeomorphRange(1.0)
+win.Render()
+coarsest = mapper.GetNumberOfRenderedTriangles()
+mapper.SetGeomorphRange(geomipmap.vtkGeoMipMapMapper().GetGeomorphRange())
+check(0 < coarsest <= full, f"without the level path tau draws {coarsest} triangles")
 
 # --- a fixed budget
 for budget in (full // 3, full // 10, 2000):
@@ -148,8 +155,8 @@ for _ in range(16):
 print("budgets at 100 s:", budgets)
 check(all(b >= a for a, b in zip(budgets, budgets[1:])), "allocated 100 s: the budget only grows")
 check(all(b <= 2 * a for a, b in zip(budgets, budgets[1:])), "it grows at most x2 a frame")
-check(mapper.GetNumberOfRenderedTriangles() == full and not mapper.GetTriangleBudgetReached(),
-      "allocated 100 s: tau stops first, the tau-driven frame is drawn")
+check(mapper.GetNumberOfRenderedTriangles() == coarsest and not mapper.GetTriangleBudgetReached(),
+      "allocated 100 s: tau stops first, the tau-driven frame (without the level path) is drawn")
 check(budgets[-1] <= 2 * full, "the budget stays within x2 of what tau draws")
 
 # Still and interactive as an interactor defines them.

@@ -58,7 +58,9 @@ def sample_xy(image):
 
 
 def reference_mesh(image, normals=True):
-    """Every valid full-resolution quad as two triangles; z = origin z + height."""
+    """Every valid full-resolution quad as two triangles, the union jack the engine draws at
+    full resolution (quad (i, j) split along (i, j)-(i+1, j+1) where i + j is even, along
+    (i+1, j)-(i, j+1) where it is odd); z = origin z + height."""
     nx, ny, _ = image.GetDimensions()
     h = heights(image)
     xs, ys = sample_xy(image)
@@ -71,7 +73,9 @@ def reference_mesh(image, normals=True):
     j, i = np.nonzero(quad)
     a = j * nx + i
     b, c, d = a + 1, a + nx + 1, a + nx
-    tris = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    main = (i + j) % 2 == 0
+    tris = np.concatenate([np.column_stack([a, b, c])[main], np.column_stack([a, c, d])[main],
+                           np.column_stack([a, b, d])[~main], np.column_stack([b, c, d])[~main]])
     if (image.GetSpacing()[0] < 0) != (image.GetSpacing()[1] < 0):
         tris = tris[:, [0, 2, 1]]  # keep counter-clockwise seen from +z
     cells = np.column_stack([np.full(len(tris), 3), tris]).ravel().astype(np.int64)

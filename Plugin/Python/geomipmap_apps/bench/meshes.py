@@ -31,7 +31,10 @@ def grid_axes(n, stride):
 
 
 def grid_mesh(heights, stride=1):
-    """Triangles over every stride-th sample; quads touching nodata are left out."""
+    """Triangles over every stride-th sample, each quad split as the engine splits cells (the
+    union jack: quad (u, v) along its (u, v)-(u+1, v+1) diagonal where u + v is even, along the
+    other where it is odd; at stride 1 the engine's full-resolution surface); quads touching
+    nodata are left out."""
     ii, jj = grid_axes(heights.nx, stride), grid_axes(heights.ny, stride)
     z = heights.z[np.ix_(jj, ii)].astype(np.float32)
     xs = (heights.ox + ii * heights.dx).astype(np.float64)
@@ -47,11 +50,14 @@ def grid_mesh(heights, stride=1):
     c, d = ids[1:, :-1].ravel(), ids[1:, 1:].ravel()
     ok = np.isfinite(z)
     good = (ok[:-1, :-1] & ok[:-1, 1:] & ok[1:, :-1] & ok[1:, 1:]).ravel()
+    vv, uu = np.indices((ny - 1, nx - 1))
+    anti = ((uu + vv) % 2 == 1).ravel()[good]
     a, b, c, d = a[good], b[good], c[good], d[good]
     conn = np.empty((a.size, 6), np.int32)
-    conn[:, 0], conn[:, 1], conn[:, 2] = a, b, d
-    conn[:, 3], conn[:, 4], conn[:, 5] = a, d, c
-    del a, b, c, d
+    # a = (u, v), b = (u+1, v), c = (u, v+1), d = (u+1, v+1), counter-clockwise
+    conn[:, 0], conn[:, 1], conn[:, 2] = a, b, np.where(anti, c, d)
+    conn[:, 3], conn[:, 4], conn[:, 5] = np.where(anti, b, a), d, c
+    del a, b, c, d, anti
     return _polydata(pts.reshape(-1, 3), conn.reshape(-1), normals.reshape(-1, 3),
                      pts[..., 2].reshape(-1))
 
