@@ -179,20 +179,12 @@ int vtkGeoMipMapFilter::RequestData(
     return 0;
   }
   Internals& in = *this->Internal;
-  std::string err;
-  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err,
-    vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory));
-  if (!terrain)
+  bool changed = false;
+  if (!vtkGeoMipMapTerrain::Bind(image, this->BlockSize, this,
+        vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory), in.Terrain,
+        in.Driver, changed))
   {
-    in.Terrain = nullptr;
-    in.Driver.setTerrain(nullptr);
-    vtkErrorMacro("Cannot use the input image: " << err);
     return 0;
-  }
-  if (terrain != in.Terrain)
-  {
-    in.Terrain = terrain;
-    in.Driver.setTerrain(terrain->GetTerrain());
   }
 
   // The frame (gmm::FrameDriver), as the mapper runs it; view-independent without a camera.
@@ -204,7 +196,7 @@ int vtkGeoMipMapFilter::RequestData(
   else
   {
     gmm::View view;
-    err = vtkGeoMipMapConversion::CameraToView(
+    const std::string err = vtkGeoMipMapConversion::CameraToView(
       this->Camera, this->ModelMatrix, this->ViewportSize[0], this->ViewportSize[1], view);
     if (!err.empty())
     {

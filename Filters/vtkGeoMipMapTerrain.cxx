@@ -104,6 +104,29 @@ gmm::TableCacheOptions vtkGeoMipMapTerrain::TableCacheOptions(bool enabled, cons
 }
 
 //------------------------------------------------------------------------------
+vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Bind(vtkImageData* image, int blockSize, vtkAlgorithm* self,
+  const gmm::TableCacheOptions& cache, vtkSmartPointer<vtkGeoMipMapTerrain>& current,
+  gmm::FrameDriver& driver, bool& changed)
+{
+  std::string err;
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, blockSize, self, err, cache);
+  changed = terrain != current;
+  if (!terrain)
+  {
+    current = nullptr;
+    driver.setTerrain(nullptr);
+    vtkErrorWithObjectMacro(self, "Cannot use the input image: " << err);
+    return nullptr;
+  }
+  if (changed)
+  {
+    current = terrain;
+    driver.setTerrain(terrain->GetTerrain());
+  }
+  return terrain;
+}
+
+//------------------------------------------------------------------------------
 vtkGeoMipMapTerrain* vtkGeoMipMapTerrain::Get(vtkImageData* image, int blockSize,
   vtkAlgorithm* progress, std::string& error, const gmm::TableCacheOptions& cache)
 {

@@ -30,7 +30,9 @@
 #include "geomipmapFiltersModule.h" // For export macro
 #include "vtkObject.h"
 
+#include "Frame.h"   // gmm::FrameDriver
 #include "Terrain.h" // gmm::Terrain
+#include "vtkSmartPointer.h" // For vtkSmartPointer
 
 #include <memory> // For std::shared_ptr
 #include <string> // For std::string
@@ -55,6 +57,15 @@ public:
    */
   static vtkGeoMipMapTerrain* Get(vtkImageData* image, int blockSize, vtkAlgorithm* progress,
     std::string& error, const gmm::TableCacheOptions& cache = gmm::TableCacheOptions());
+
+  /**
+   * Get() for a consumer that holds its terrain in `current` and draws it with `driver`
+   * (the mapper, the filter): a new terrain replaces both, and `changed` says so; on failure
+   * both are forgotten and `self` reports the error. Returns the terrain, or null.
+   */
+  static vtkGeoMipMapTerrain* Bind(vtkImageData* image, int blockSize, vtkAlgorithm* self,
+    const gmm::TableCacheOptions& cache, vtkSmartPointer<vtkGeoMipMapTerrain>& current,
+    gmm::FrameDriver& driver, bool& changed);
 
   /**
    * The table cache settings for a consumer: off when `enabled` is false, else in

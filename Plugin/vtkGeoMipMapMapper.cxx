@@ -429,22 +429,18 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
       return false;
     }
   }
-  std::string err;
-  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Get(image, this->BlockSize, this, err,
-    vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory));
+  bool changed = false;
+  vtkGeoMipMapTerrain* terrain = vtkGeoMipMapTerrain::Bind(image, this->BlockSize, this,
+    vtkGeoMipMapTerrain::TableCacheOptions(this->TableCache, this->TableCacheDirectory), in.Terrain,
+    in.Driver, changed);
   if (!terrain)
   {
-    in.Terrain = nullptr;
-    in.Driver.setTerrain(nullptr);
-    vtkErrorMacro("Cannot use the input image: " << err);
     return false;
   }
-  if (terrain != in.Terrain)
+  if (changed)
   {
-    // A frozen selection and the budget's warm start belong to the old terrain: the driver
-    // starts afresh.
-    in.Terrain = terrain;
-    in.Driver.setTerrain(terrain->GetTerrain());
+    // A frozen selection and the budget's warm start belonged to the old terrain: the
+    // driver started afresh.
     this->LastTerrainBuildTime = terrain->GetBuildTime();
     this->LastTablesFromCache = terrain->GetTableCacheReport().hit;
     this->IndicesDirty = true;
