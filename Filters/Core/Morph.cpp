@@ -48,14 +48,7 @@ double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int
   const double fy = static_cast<double>(j - ja) / static_cast<double>(jb - ja);
   const double h00 = hf.height(int(ia), int(ja)), h10 = hf.height(int(ib), int(ja));
   const double h01 = hf.height(int(ia), int(jb)), h11 = hf.height(int(ib), int(jb));
-  if (!anti)
-  {
-    // diagonal (ia, ja)-(ib, jb)
-    return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
-  }
-  // diagonal (ib, ja)-(ia, jb)
-  return fx + fy <= 1.0 ? h00 + fx * (h10 - h00) + fy * (h01 - h00)
-                        : h11 + (1.0 - fx) * (h01 - h11) + (1.0 - fy) * (h10 - h11);
+  return splitQuadHeight(h00, h10, h01, h11, fx, fy, anti);
 }
 
 double clamp01(double t)

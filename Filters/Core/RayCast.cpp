@@ -282,18 +282,7 @@ double heightAt(const Heightfield& hf, double x, double y, double heightScale)
   const double fx = gx - i, fy = gy - j;
   const double h00 = hf.height(i, j), h10 = hf.height(i + 1, j), h01 = hf.height(i, j + 1);
   const double h11 = hf.height(i + 1, j + 1);
-  double h;
-  if (!fullResolutionAntiDiagonal(i, j))
-  {
-    // Below the diagonal: triangle (i, j), (i+1, j), (i+1, j+1); above: (i, j), (i+1, j+1), (i, j+1).
-    h = fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
-  }
-  else
-  {
-    // Split along (i+1, j)-(i, j+1): triangle (i, j), (i+1, j), (i, j+1) below it, the other above.
-    h = fx + fy <= 1.0 ? h00 + fx * (h10 - h00) + fy * (h01 - h00)
-                       : h11 + (1.0 - fx) * (h01 - h11) + (1.0 - fy) * (h10 - h11);
-  }
+  const double h = splitQuadHeight(h00, h10, h01, h11, fx, fy, fullResolutionAntiDiagonal(i, j));
   return std::isnan(h) ? nan : hf.z0 + heightScale * h;
 }
 
