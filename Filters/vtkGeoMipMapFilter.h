@@ -107,7 +107,8 @@ public:
   ///@{
   /**
    * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default
-   * gmm::kDefaultBlockQuads (32), as the mapper's. A smaller value is refused with an error
+   * gmm::kDefaultBlockQuads (32), as the mapper's. Blocks are a power of two quads, as large
+   * as halving the DEM would make them within this size (gmm::bandWidth). A smaller value is refused with an error
    * and the previous one kept.
    */
   void SetBlockSize(int quads);

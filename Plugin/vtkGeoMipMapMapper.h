@@ -103,7 +103,9 @@ public:
   ///@{
   /**
    * Largest block side in quads, at least gmm::kMinBlockQuads (4). Default
-   * GetDefaultBlockSize() (32). A smaller value is refused with an error and the previous one
+   * GetDefaultBlockSize() (32). Blocks are a power of two quads, as large as halving the DEM
+   * would make them within this size (gmm::bandWidth): 32 on a 4097^2 DEM, 16 on an SRTM
+   * tile. A smaller value is refused with an error and the previous one
    * kept. Changing it rebuilds the quadtree and error tables at the next render; the height
    * texture is kept.
    */

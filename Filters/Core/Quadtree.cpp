@@ -13,19 +13,28 @@ namespace gmm
 namespace
 {
 
-void splitInto(int begin, int end, int maxQuads, std::vector<int>& starts)
+// Bands of `width` quads from `begin`, the remainder in a band of its own (splitBands). A
+// remainder of one quad joins the band before it; when that makes it wider than maxQuads,
+// the two are split in halves, the first rounded down to an even number of quads.
+void splitInto(int begin, int end, int width, int maxQuads, std::vector<int>& starts)
 {
-  const int quads = end - begin;
-  if (quads <= maxQuads)
+  int s = begin;
+  while (end - s > width)
   {
-    starts.push_back(begin);
-    return;
+    starts.push_back(s);
+    s += width;
   }
-  // Halve (Poyart 3.1), the first half rounded down to an even number of quads, so that
-  // every band starts on an even sample (splitBands).
-  const int mid = begin + std::max(2, quads / 4 * 2);
-  splitInto(begin, mid, maxQuads, starts);
-  splitInto(mid, end, maxQuads, starts);
+  if (s > begin && end - s == 1)
+  {
+    s = starts.back();
+    starts.pop_back();
+    if (width + 1 > maxQuads)
+    {
+      starts.push_back(s);
+      s += std::max(2, (width + 1) / 4 * 2);
+    }
+  }
+  starts.push_back(s);
 }
 
 Box emptyBox()
@@ -137,6 +146,27 @@ std::string validateBlockSize(int maxBlockQuads)
     std::to_string(kMinBlockQuads) + " quads";
 }
 
+int bandWidth(int quads, int maxQuads)
+{
+  maxQuads = std::max(1, maxQuads);
+  if (quads <= maxQuads)
+  {
+    return quads;
+  }
+  int halvings = 0;
+  while (static_cast<int64_t>(maxQuads) << halvings < quads)
+  {
+    ++halvings;
+  }
+  const int halved = quads >> halvings;
+  int width = 2;
+  while (width * 2 <= halved)
+  {
+    width *= 2;
+  }
+  return width;
+}
+
 std::vector<int> splitBands(int quads, int maxQuads, int lowCollar, int highCollar)
 {
   // Collars widened to keep the bands between them starting on even samples.
@@ -153,7 +183,8 @@ std::vector<int> splitBands(int quads, int maxQuads, int lowCollar, int highColl
   {
     starts.push_back(0);
   }
-  splitInto(lowCollar, quads - highCollar, std::max(1, maxQuads), starts);
+  splitInto(lowCollar, quads - highCollar, bandWidth(quads - lowCollar - highCollar, maxQuads),
+    std::max(1, maxQuads), starts);
   if (highCollar > 0)
   {
     starts.push_back(quads - highCollar);

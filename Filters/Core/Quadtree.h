@@ -1,8 +1,9 @@
 // Quadtree with variable-size leaves over a heightfield (Poyart et al., 3.1).
 //
-// Width and height are split in two (rounding down) independently until a side is at most
-// `maxBlockQuads` quads. Because a dimension is split by a rule that depends on that
-// dimension alone, the leaves form a grid of row bands x column bands: every block has
+// Width and height are each cut into bands of a power of two quads, as large as halving
+// would make them within `maxBlockQuads` (splitBands, bandWidth), and the quadtree's nodes
+// halve the bands. Because a dimension is split by a rule that depends on that dimension
+// alone, the leaves form a grid of row bands x column bands: every block has
 // exactly one neighbour per side with the same shared edge, which keeps stitching exact.
 // Leaves share their border samples (block (c, r) covers samples colStart[c]..colStart[c+1]).
 #pragma once
@@ -180,34 +181,42 @@ struct Quadtree
 };
 
 // The smallest largest-block side, in quads: the one rule every entry point (engine,
-// mapper, filter, command-line tools) applies. Below 4, halving can leave a block one quad
-// wide between two neighbours, which no block shape stitches.
+// mapper, filter, command-line tools) applies. Below 4, a band of 3 quads can leave a block
+// one quad wide between two neighbours, which no block shape stitches.
 constexpr int kMinBlockQuads = 4;
 
-// The block size the mapper, the filter, the engine and the tools use unless told otherwise.
-// Measured (benchmarks-core.md, "The default block size is now 32"): against 64, 32 draws
-// half the triangles at tau = 1 (llvmpipe frames 1.4x faster at 4097^2) and, with merged
-// nodes, costs less per frame over a whole 16385^2 DEM, for about 2x the CPU per frame at
-// 4097^2 and 1.3x the table build time at 16385^2; 16 draws fewer triangles still but
-// holds 3.8x the per-block memory of 32 and costs 2x its CPU per frame at 16385^2.
-// Session 8 measured 16 again, as an automatic default for DEMs up to 2^27 samples: frames
-// 1.25 - 1.5x faster on llvmpipe at 4097^2 and on the real DEMs, but geomorphing pops more
-// (on TestMorphRamp's flight at 0.64 quad a frame: worst 0.81 against 0.49 px, mean of the
-// frames' worst 0.26 against 0.10 px), so the default stayed 32 (benchmarks-core.md).
+// The block size the mapper, the filter, the engine and the tools use unless told otherwise:
+// blocks of 32 quads on DEMs of 32 x 2^k quads, 16 on most others (bandWidth). Measured
+// (decision record 002, step 4; benchmarks-core.md): against 64, 32 draws half the
+// triangles at tau = 1; 16 everywhere draws 55 % fewer than 32 on bench_core's 4097^2
+// flight with geomorphing, for the same CPU, but 9 - 36 % more over a whole 16385^2 DEM
+// (its merged nodes' fans pass through 4x as many block corners), and geomorphing pops more
+// where it merges nodes (mean of the frames' worst pop 1.17 against 0.24 px on
+// measure_pop_causes' flight).
 constexpr int kDefaultBlockQuads = 32;
 
 // "" when maxBlockQuads is a usable block size (>= kMinBlockQuads), else the reason.
 std::string validateBlockSize(int maxBlockQuads);
 
-// Splits [0, quads] into bands of at most maxQuads quads by recursive halving, the first
-// half rounded down to an even number of quads. Returns band start positions plus the end
-// (so size = bands + 1). Non-zero collars (nodataCollar) first take a band of that many
-// quads at the low and the high end, one more where that keeps the next band's start even,
-// and the quads between are halved as above; a collar that would leave fewer than
-// kMinBlockQuads quads between is dropped. Every band starts on an even sample: a block's
-// full-resolution cells are then split as the DEM's (the union-jack rule, cellAntiDiagonal
-// in Levels.h, is the same counted from the block's corner or from the DEM's), so level 0
-// is one triangulation of the whole DEM (RayCast.h).
+// The width of a dimension's bands (splitBands): `quads` itself when it is at most
+// maxQuads, else the largest power of two (at least 2) not above quads / 2^k, k the fewest
+// halvings that bring quads within maxQuads. Blocks are then as large as halving would make
+// them (between maxQuads / 4 and maxQuads; maxQuads itself when quads is maxQuads times a
+// power of two, as a 2^k + 1 DEM at a power-of-two block size), and a power of two, so that
+// each level of a block nests in the next (Levels.h; decision record 002).
+int bandWidth(int quads, int maxQuads);
+
+// Splits [0, quads] into bands: from the low end, bands of bandWidth quads, then the
+// remainder in a band of its own (a remainder of one quad joins the band before, split in
+// two halves, the first rounded down to even, where that band would exceed maxQuads).
+// Returns band start positions plus the end (so size = bands + 1). Non-zero collars
+// (nodataCollar) first take a band of that many quads at the low and the high end, one
+// more where that keeps the next band's start even, and the quads between are split as
+// above; a collar that would leave fewer than kMinBlockQuads quads between is dropped.
+// Every band starts on an even sample: a block's full-resolution cells are then split as
+// the DEM's (the union-jack rule, cellAntiDiagonal in Levels.h, is the same counted from
+// the block's corner or from the DEM's), so level 0 is one triangulation of the whole DEM
+// (RayCast.h).
 std::vector<int> splitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0);
 
 // Band index of sample s in band starts `start` (splitBands' form, bands + 1 entries): the

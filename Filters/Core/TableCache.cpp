@@ -42,8 +42,9 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // 12: triangle counts leave out what nodata drops, which changes which levels of a block
 // with nodata draw fewer triangles than a finer one, so are allowed; 13: ring blocks split
 // their cells by the union-jack rule (cellAntiDiagonal, Levels.h), which changes their
-// errors at every level above 0, and bands start on even samples (splitBands).
-constexpr uint32_t kFormatVersion = 13;
+// errors at every level above 0, and bands start on even samples (splitBands); 14: bands
+// of the block width from the DEM's first sample (splitBands) instead of halves.
+constexpr uint32_t kFormatVersion = 14;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

@@ -162,26 +162,40 @@ inline std::size_t coarsestTriangles(const gmm::Quadtree& qt, bool mergedNodes =
   return sum;
 }
 
-// Reference recursive halving (Quadtree.h): the first half the largest even number of quads
-// not above q / 2.
+// Reference bands (Quadtree.h, splitBands) over `quads` quads from `start`: as many bands of
+// the width w as fit, the remainder after them; a remainder of one quad makes the last full
+// band w + 1 quads, split into max(2, (w + 1) / 4 * 2) and the rest when w + 1 > maxQuads.
+// w: `quads` when it is at most maxQuads, else the largest power of two p >= 2 with
+// p * 2^k <= quads, 2^k the smallest power of two with quads <= maxQuads * 2^k.
 inline void refSplit(int start, int quads, int maxQuads, std::vector<int>& starts)
 {
-  if (quads <= maxQuads)
+  if (maxQuads < 1)
+    maxQuads = 1;
+  long scale = 1;
+  while (static_cast<long>(maxQuads) * scale < quads)
+    scale *= 2;
+  int w = 2;
+  while (static_cast<long>(w) * 2 * scale <= quads)
+    w *= 2;
+  if (quads <= w || quads <= maxQuads)
   {
     starts.push_back(start);
     return;
   }
-  int a = quads / 2;
-  if (a % 2 == 1)
-    --a;
-  if (a < 2)
-    a = 2; // 3 quads over a block size below the minimum: 2 + 1
-  refSplit(start, a, maxQuads, starts);
-  refSplit(start + a, quads - a, maxQuads, starts);
+  int full = quads / w;
+  const int rest = quads % w;
+  if (rest == 0 || rest == 1)
+    --full; // the last band: w quads, or w + 1 split below
+  for (int k = 0; k < full; ++k)
+    starts.push_back(start + k * w);
+  const int at = start + full * w, left = quads - full * w;
+  starts.push_back(at);
+  if (rest == 1 && w + 1 > maxQuads)
+    starts.push_back(at + std::max(2, left / 4 * 2));
 }
 // With collars (Quadtree.h, splitBands): a band of each collar at the ends, widened by one
 // quad where the band after (before) it would start on an odd sample, the quads between
-// halved; both collars dropped when fewer than 4 quads would be left between.
+// split by refSplit; both collars dropped when fewer than 4 quads would be left between.
 inline std::vector<int> refSplitBands(int quads, int maxQuads, int lowCollar = 0, int highCollar = 0)
 {
   if (lowCollar % 2 == 1)

@@ -18,13 +18,12 @@ namespace
 {
 
 // Rasterises the inner grid exactly as emitted and compares the direct walk with it.
-void expectInnerAreasMatch(const gmm::Heightfield& hf, int maxBlockQuads)
+void expectInnerAreasMatch(const gmm::Heightfield& hf, int maxBlockQuads, int& compared)
 {
   const gmm::Quadtree qt = gmm::buildQuadtree(hf, maxBlockQuads);
   gmm::EmitScratch scratch;
   std::vector<gmm::GridTriangle> tris;
   std::vector<int> C, R;
-  int compared = 0;
   for (int b = 0; b < qt.blockCount(); ++b)
   {
     const int w = qt.blockWidth(b), h = qt.blockHeight(b);
@@ -49,7 +48,6 @@ void expectInnerAreasMatch(const gmm::Heightfield& hf, int maxBlockQuads)
       ++compared;
     }
   }
-  EXPECT_GT(compared, 0);
 }
 
 } // namespace
@@ -57,6 +55,7 @@ void expectInnerAreasMatch(const gmm::Heightfield& hf, int maxBlockQuads)
 TEST(ErrorTable, InnerAreaWalkEqualsRasterisedInnerGrid)
 {
   Rng rng(20261130);
+  int compared = 0;
   for (int k = 0; k < 60; ++k)
   {
     const int nx = randInt(rng, 5, 160), ny = randInt(rng, 5, 160);
@@ -66,8 +65,9 @@ TEST(ErrorTable, InnerAreaWalkEqualsRasterisedInnerGrid)
     if (k % 5 == 2)
       for (float& z : hf.z)
         z = std::round(z / 50.0f) * 50.0f; // plateaus and cliffs: exact zeros and large steps
-    expectInnerAreasMatch(hf, 4 << randInt(rng, 0, 5));
+    expectInnerAreasMatch(hf, 4 << randInt(rng, 0, 5), compared);
   }
+  EXPECT_GT(compared, 500);
 }
 
 TEST(ErrorTable, InnerAreaSeesNodata)
@@ -281,7 +281,7 @@ TEST(ErrorTable, StripAndOwnEntriesEqualBruteForceOverTheirTriangles)
     const int nx = randInt(rng, 12, 110), ny = randInt(rng, 12, 110);
     gmm::Heightfield hf = roughTerrain(nx, ny, rng);
     if (k % 3 == 1)
-      for (int h = 0; h < 3; ++h)
+      for (int h = 0; h < 6; ++h)
         hf.z[hf.index(randInt(rng, 0, nx - 1), randInt(rng, 0, ny - 1))] = NAN;
     const gmm::Quadtree qt = gmm::buildQuadtree(hf, 4 << randInt(rng, 0, 3));
     const gmm::ErrorTable table = gmm::buildErrorTable(hf, qt, 1);

@@ -25,22 +25,32 @@ TEST(Quadtree, SplitBandsCoverAndRespectMax)
         EXPECT_GT(b[k + 1], b[k]) << "q=" << q << " max=" << maxQ;
         EXPECT_LE(b[k + 1] - b[k], maxQ) << "q=" << q << " max=" << maxQ;
       }
-      // recursive halving, the first half rounded down to an even number of quads; every
-      // band starts on an even sample
+      // bands of a power of two quads from the DEM's first sample, the remainder after
+      // them; every band starts on an even sample
       ASSERT_EQ(b, refSplitBands(q, maxQ)) << "q=" << q << " max=" << maxQ;
       for (std::size_t k = 0; k + 1 < b.size(); ++k)
         EXPECT_EQ(b[k] % 2, 0) << "q=" << q << " max=" << maxQ;
     }
   EXPECT_EQ(gmm::splitBands(64, 64), (std::vector<int>{ 0, 64 }));
-  EXPECT_EQ(gmm::splitBands(65, 64), (std::vector<int>{ 0, 32, 65 }));
-  EXPECT_EQ(gmm::splitBands(129, 64), (std::vector<int>{ 0, 64, 96, 129 }));
+  EXPECT_EQ(gmm::splitBands(65, 64), (std::vector<int>{ 0, 32, 65 })) << "one quad left joins the band before";
+  EXPECT_EQ(gmm::splitBands(129, 64), (std::vector<int>{ 0, 32, 64, 96, 129 }));
   EXPECT_EQ(gmm::splitBands(7, 3), (std::vector<int>{ 0, 2, 4, 7 }));
-  // An SRTM3 tile's 1200 quads: 600, 300, 150, then 74 + 76, 36 + 38 and 38 + 38, then
-  // 18 + 18, 18 + 20 and 18 + 20.
+  EXPECT_EQ(gmm::splitBands(33, 33), (std::vector<int>{ 0, 33 }));
+  EXPECT_EQ(gmm::splitBands(70, 33), (std::vector<int>{ 0, 16, 32, 48, 64, 70 })) << "70 / 4 = 17.5: 16";
+  EXPECT_EQ(gmm::splitBands(4096, 32).size(), 129u) << "a 4097^2 DEM: blocks of 32";
+  EXPECT_EQ(gmm::splitBands(66, 32), (std::vector<int>{ 0, 16, 32, 48, 64, 66 }));
+  // 33 quads at block 16: halving would reach 8.25, so bands of 8, the one quad left
+  // joining the last (9 quads, within the maximum)
+  EXPECT_EQ(gmm::splitBands(33, 16), (std::vector<int>{ 0, 8, 16, 24, 33 }));
+  EXPECT_EQ(gmm::bandWidth(4096, 32), 32);
+  EXPECT_EQ(gmm::bandWidth(4095, 32), 16);
+  EXPECT_EQ(gmm::bandWidth(3600, 32), 16) << "3600 / 128 = 28.1";
+  EXPECT_EQ(gmm::bandWidth(20, 32), 20) << "within the maximum: one band";
+  // An SRTM3 tile's 1200 quads: halving would reach 18.75, so 75 blocks of 16.
   const std::vector<int> srtm3 = gmm::splitBands(1200, 32);
-  ASSERT_EQ(srtm3.size(), 65u);
-  EXPECT_EQ(std::vector<int>(srtm3.begin(), srtm3.begin() + 9),
-    (std::vector<int>{ 0, 18, 36, 54, 74, 92, 112, 130, 150 }));
+  ASSERT_EQ(srtm3.size(), 76u);
+  EXPECT_EQ(std::vector<int>(srtm3.begin(), srtm3.begin() + 4), (std::vector<int>{ 0, 16, 32, 48 }));
+  EXPECT_EQ(srtm3.back(), 1200);
 }
 
 namespace
@@ -250,10 +260,10 @@ TEST(Quadtree, UpperHalfBandsByHand)
 TEST(Quadtree, NodataCollarBandsByHand)
 {
   // splitBands with collars: the collars first (3 quads at the high end would start on
-  // sample 97: widened to 4), the quads between halved as without them, the first half even
-  // (84 -> 42 + 42 -> 20 + 22, 20 + 22; 98 -> 48 + 50 -> 24 + 24, 24 + 26).
-  EXPECT_EQ(gmm::splitBands(100, 32, 12, 3), (std::vector<int>{ 0, 12, 32, 54, 74, 96, 100 }));
-  EXPECT_EQ(gmm::splitBands(100, 32, 0, 2), (std::vector<int>{ 0, 24, 48, 72, 98, 100 }));
+  // sample 97: widened to 4), the quads between in bands as without them, from the low
+  // collar's end (84 -> 5 x 16 + 4; 98 -> 6 x 16 + 2).
+  EXPECT_EQ(gmm::splitBands(100, 32, 12, 3), (std::vector<int>{ 0, 12, 28, 44, 60, 76, 92, 96, 100 }));
+  EXPECT_EQ(gmm::splitBands(100, 32, 0, 2), (std::vector<int>{ 0, 16, 32, 48, 64, 80, 96, 98, 100 }));
   EXPECT_EQ(gmm::splitBands(10, 32, 4, 4), (std::vector<int>{ 0, 10 })) << "under 4 quads left";
 
   // A 101 x 81 plane with nodata wedges: row j starts with j % 12 nodata samples (widest
@@ -289,11 +299,11 @@ TEST(Quadtree, NodataCollarBandsByHand)
   EXPECT_EQ(gmm::nodataCollar(hf, 12).west, 8) << "at block 12 only runs up to 7 count";
   EXPECT_EQ(gmm::nodataCollar(hf, 4).west, 0) << "the smallest block has no collars";
 
-  // Columns: 86 quads between the collars, 42 + 44, then 20 + 22 and 22 + 22. Rows: the
-  // south collar of 3 widened to 4, then 76 quads, 38 + 38, then 18 + 20 each.
+  // Columns: 86 quads between the collars, 5 x 16 + 6. Rows: the south collar of 3
+  // widened to 4, then 76 quads, 4 x 16 + 12.
   const gmm::Quadtree qt = gmm::buildQuadtree(hf, 32);
-  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 12, 32, 54, 76, 98, 100 }));
-  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 4, 22, 42, 60, 80 }));
+  EXPECT_EQ(qt.colStart, (std::vector<int>{ 0, 12, 28, 44, 60, 76, 92, 98, 100 }));
+  EXPECT_EQ(qt.rowStart, (std::vector<int>{ 0, 4, 20, 36, 52, 68, 80 }));
   // The wedges lie in the collar bands, with a valid line between them and the inner
   // blocks: scanned here from the heights, the inner blocks' nodata, and that of the
   // collar bands' last line but one, is row 40's and column 50's only.

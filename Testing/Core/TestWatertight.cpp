@@ -232,22 +232,22 @@ TEST(Watertight, EngineUpdateWithLevelsMatchesFreshTessellation)
 
 // The minimum block size is 4 quads (Quadtree.h raises anything smaller to 4; Engine.h
 // refuses it). Halving then gives bands of 2, 3 or 4 quads, so the narrowest blocks (2 quads:
-// levels 0 and 1 only) sit next to 3- and 4-quad blocks. Block size 2 used to give a 1-quad
+// levels 0 and 1 only) sit next to 3- and 4-quad blocks (bands of 2 or 4, a remainder of 3). Block size 2 used to give a 1-quad
 // band inside a wider DEM (a Thin block next to ring/one-quad blocks) whose shared edge was
 // not stitched: 4x3 DEM, blocks 1x2 and 2x2 quads at levels 0 and 1 gave a T-junction at
 // (1,1). These cases check the real minimum, and that they really exercise stitching: the
 // assignments must draw triangles and put coarse and fine blocks side by side.
 
-// 10 x 9 quads at block size 4: column bands 4,2,4 and row bands 4,2,3 (halves rounded down
-// to even). Every valid level of every block, in random combinations: watertight, triangles
+// 16 x 9 quads at block size 4: column bands 4,4,4,4 and row bands 2,2,2,3 (9 quads take
+// bands of 2, the last one quad joining the band before). Every valid level of every block, in random combinations: watertight, triangles
 // drawn, coarse next to fine.
 TEST(Watertight, MinimumBlockSizeNarrowBands)
 {
   Rng rng(1);
-  gmm::Heightfield hf = roughTerrain(11, 10, rng, 2.0, 3.0);
+  gmm::Heightfield hf = roughTerrain(17, 10, rng, 2.0, 3.0);
   gmm::Quadtree qt = gmm::buildQuadtree(hf, 4);
-  ASSERT_EQ(bandWidths(qt.colStart), (std::vector<int>{ 4, 2, 4 }));
-  ASSERT_EQ(bandWidths(qt.rowStart), (std::vector<int>{ 4, 2, 3 }));
+  ASSERT_EQ(bandWidths(qt.colStart), (std::vector<int>{ 4, 4, 4, 4 }));
+  ASSERT_EQ(bandWidths(qt.rowStart), (std::vector<int>{ 2, 2, 2, 3 }));
   // below the minimum, the size is raised to it: the same bands
   for (int small : { 0, 1, 2, 3 })
   {
