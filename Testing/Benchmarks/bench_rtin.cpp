@@ -16,6 +16,8 @@
 //    degree field of view, the RTIN's count (Lindstrom-Pascucci nested spheres) against
 //    ours (Engine::update, certified metric) at tau = 1 and 2 px; printed: the mean, min and
 //    max over the frames of ours / RTIN.
+// Columns are block sizes as set (SetBlockSize); the leaves are a power of two within each
+// (Quadtree.h, bandWidth), printed beside it: on the 512^2 Fuji tile, half the block size.
 // DEMs: the Fuji tile (62 m spacing), Puget Sound 1025^2 (ps_height_1k.png, 160 m) and a
 // 4097^2 synthetic (gmm::makeSyntheticTerrain, 30 m, seed 42). RTIN grids must be
 // (2^k + 1)^2, which all three are (Fuji after martini's backfill).
@@ -276,8 +278,11 @@ void viewIndependentTable(const rtin::Grid& grid, const gmm::Heightfield& tile)
   const double build = seconds(t0);
   std::printf("RTIN error build (513^2): %.1f ms\n\n", build * 1e3);
   const int blocks[] = { 64, 32, 16, 8, 4 };
-  std::printf("| max error | RTIN (martini) | ours b64 | ours b32 | ours b16 | ours b8 | ours b4 |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  // Block sizes as set; the leaves are bandWidth's power of two (511 quads: half of it).
+  std::printf("| max error | RTIN (martini) |");
+  for (int b : blocks)
+    std::printf(" ours b%d (leaves %d) |", b, gmm::bandWidth(tile.nx - 1, b));
+  std::printf("\n|---|---|---|---|---|---|---|\n");
   std::vector<std::unique_ptr<gmm::Engine>> engines;
   for (int b : blocks)
     engines.push_back(makeEngine(tile, b));
@@ -325,8 +330,10 @@ void flightTable(const char* name, const rtin::Grid& grid, int frames)
   for (int b : blocks)
     engines.push_back(makeEngine(hf, b));
   const auto flights = makeFlights(grid, frames);
-  std::printf("| flight | tau | RTIN tris (mean) | ours/RTIN b64 | b32 | b16 | b8 |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  std::printf("| flight | tau | RTIN tris (mean) |");
+  for (int b : blocks)
+    std::printf(" ours/RTIN b%d (leaves %d) |", b, gmm::bandWidth(hf.nx - 1, b));
+  std::printf("\n|---|---|---|---|---|---|---|\n");
   const char* names[] = { "diagonal", "west-east", "south-north" };
   for (int f = 0; f < 3; ++f)
     for (double tau : { 1.0, 2.0 })
