@@ -169,7 +169,7 @@ public:
   /**
    * How gradually geomorphing changes levels (as vtkGeoMipMapMapper::SetGeomorphRange):
    * while geomorphing, a block moves through its levels by at most one level per this
-   * factor of change in its distance (default 3), and a morph factor never rises faster
+   * factor of change in its distance (default 2), and a morph factor never rises faster
    * than that from one Update to the next, so that no frame pops. Larger is smoother and
    * draws more triangles (blocks stay finer than PixelError needs near their switches);
    * 1 or less selects the coarsest levels within PixelError and morphs each block as far

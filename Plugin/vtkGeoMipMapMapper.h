@@ -298,17 +298,17 @@ public:
 
   ///@{
   /**
-   * How gradually geomorphing changes levels (default 3): while geomorphing, a block moves
+   * How gradually geomorphing changes levels (default 2): while geomorphing, a block moves
    * through its levels by at most one level per this factor of change in its distance, and
    * its morph factor never rises faster than that from one frame to the next, so that no
    * frame pops where two levels' errors are close or a neighbour's switch frees a block.
-   * Larger is smoother and draws more triangles (blocks stay finer than PixelError needs
-   * while they glide: on low flights at block 64, +13 % over Puget Sound and +55 % over a
-   * rough fractal; on geomipmap-bench's wide 4097^2 orbit at tau 1, +308 % at the default
-   * and +52 % at 2, since where a block's errors grow by less than this factor a level its
-   * lag grows with distance; Documentation/benchmarks-core.md, session 26). A lower range
-   * pops more: the levels do not nest, and only switching far below the budget hides it.
-   * 1 or less selects the coarsest
+   * Larger is smoother where levels do not nest (a block's side strips, merged nodes; inside
+   * a block they do) and draws more triangles, since blocks stay finer than PixelError needs
+   * while they glide. Measured against no geomorphing at PixelError 2 (measure_popping.py,
+   * decision record 002): 1.05x the triangles over N48W125 and 1.28x over N41E001 at 2,
+   * 1.30x and 1.78x at 3; on bench_core's whole-DEM 4097^2 flight at PixelError 1, 1.30x at
+   * 2 and 2.56x at 3. Worst pop between frames at 2: 1.85 and 1.78 px over those tiles, 1.15
+   * over measure_pop_causes' fractal (1.85, 1.93 and 1.59 at 3). 1 or less selects the coarsest
    * levels within PixelError and morphs each block as far as its certificate allows. The
    * certificate holds at any range.
    */

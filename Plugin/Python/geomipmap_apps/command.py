@@ -62,6 +62,14 @@ def default_block_size():
     return vtkGeoMipMapMapper.GetDefaultBlockSize()
 
 
+def default_geomorph_range():
+    """The engine's one default geomorphing range (gmm::kDefaultMorphRange), as a new mapper
+    states it."""
+    from geomipmap import vtkGeoMipMapMapper
+
+    return vtkGeoMipMapMapper().GetGeomorphRange()
+
+
 def add_block_size_option(group):
     """--block-size, with the mapper's default; check_block_size validates it."""
     default = default_block_size()

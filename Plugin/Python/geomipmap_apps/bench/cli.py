@@ -61,8 +61,9 @@ def build_parser():
     p.add_argument("--frames", type=int, default=12, help="frames per method (default 12)")
     p.add_argument("--geomorph-range", type=command.positive(float), default=None, metavar="R",
                    help="GeomorphRange of ours' mapper and of the filters that measure its "
-                        "frames (default: the mapper's, 3): what geomorphing's level path "
-                        "costs against how gradually it changes levels")
+                        f"frames (default: the mapper's, {command.default_geomorph_range():g}): "
+                        "what geomorphing's level path costs against how gradually it changes "
+                        "levels")
     command.add_block_size_option(p)
     p.add_argument("--path", choices=("orbit", "line"), default="orbit")
     p.add_argument("--size", type=command.window_size, default=(1280, 720),
