@@ -189,10 +189,10 @@ constexpr int kMinBlockQuads = 4;
 // blocks of 32 quads on DEMs of 32 x 2^k quads, 16 on most others (bandWidth). Measured
 // (decision record 002, step 4; benchmarks-core.md): against 64, 32 draws half the
 // triangles at tau = 1; 16 everywhere draws 55 % fewer than 32 on bench_core's 4097^2
-// flight with geomorphing, for the same CPU, but 9 - 36 % more over a whole 16385^2 DEM
-// (its merged nodes' fans pass through 4x as many block corners), and geomorphing pops more
-// where it merges nodes (mean of the frames' worst pop 1.17 against 0.24 px on
-// measure_pop_causes' flight).
+// flight with geomorphing (range 3), for the same CPU, but 9 % (with geomorphing) to 36 %
+// (without) more over a whole 16385^2 DEM (its merged nodes' fans pass through 4x as many
+// block corners), and geomorphing at range 3 pops more where it merges nodes (mean of the
+// frames' worst pop 1.17 against 0.24 px on measure_pop_causes' flight).
 constexpr int kDefaultBlockQuads = 32;
 
 // "" when maxBlockQuads is a usable block size (>= kMinBlockQuads), else the reason.
