@@ -429,7 +429,8 @@ public:
   /**
    * Statistics of the last rendered frame (the last renderer that drew this mapper).
    * LastUpdateTime is the LOD work (cull, select, tessellate, and with Geomorphing the
-   * morph factors) in seconds;
+   * morph factors) in seconds; NumberOfVisibleBlocks counts the blocks drawn (in view and
+   * holding a valid sample: a block all nodata is never drawn), NumberOfCulledBlocks the others;
    * MaximumScreenSpaceError is the engine's certified bound in pixels and
    * MaximumGeometricError in data units; IndicesReused is true when the frame's triangles
    * equal the previous frame's. After a render that drew nothing because of an error (bad

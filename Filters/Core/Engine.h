@@ -28,6 +28,8 @@ namespace gmm
 
 struct FrameStats
 {
+  // Blocks drawn (in view and holding a valid sample: a block all nodata is never drawn),
+  // and the others.
   int visibleBlocks = 0;
   int culledBlocks = 0;
   std::size_t triangles = 0;

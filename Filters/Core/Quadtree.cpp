@@ -94,6 +94,7 @@ void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
     const int b = qt.blockIndex(c0, r0);
     qt.nodes[nodeIndex].block = b;
     qt.nodes[nodeIndex].box = qt.blockBox[b];
+    qt.nodes[nodeIndex].allNodata = qt.blockAllNodata[b] != 0;
     return;
   }
   // Split the block range the same way the samples were split: children mirror the
@@ -124,14 +125,17 @@ void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
   qt.nodes[nodeIndex].childCount = n;
   Box box = emptyBox();
   int height = 0;
+  bool allNodata = true;
   for (int k = 0; k < n; ++k)
   {
     buildNode(qt, first + k, ranges[k][0], ranges[k][1], ranges[k][2], ranges[k][3]);
     grow(box, qt.nodes[first + k].box);
     height = std::max(height, qt.nodes[first + k].height + 1);
+    allNodata = allNodata && qt.nodes[first + k].allNodata;
   }
   qt.nodes[nodeIndex].box = box;
   qt.nodes[nodeIndex].height = height;
+  qt.nodes[nodeIndex].allNodata = allNodata;
 }
 
 } // namespace
@@ -273,6 +277,26 @@ std::vector<uint8_t> upperHalfBands(int bands)
 
 namespace
 {
+// Quadtree::blockAllNodata from the nodata bits: a block whose every bit is set.
+void markAllNodataBlocks(Quadtree& qt)
+{
+  qt.blockAllNodata.assign(static_cast<std::size_t>(qt.blockCount()), 0);
+  for (int b = 0; b < qt.blockCount(); ++b)
+  {
+    if (!qt.blockHasNodata[b])
+    {
+      continue;
+    }
+    const uint64_t bits = static_cast<uint64_t>(qt.blockWidth(b) + 1) * (qt.blockHeight(b) + 1);
+    uint64_t set = 0;
+    for (uint64_t w = 0; w < (bits + 63) / 64; ++w)
+    {
+      set += static_cast<uint64_t>(__builtin_popcountll(qt.nodataBits[qt.nodataBitsAt[b] + w]));
+    }
+    qt.blockAllNodata[b] = set == bits ? 1 : 0;
+  }
+}
+
 // Quadtree::nodataBits for every block with nodata (blockHasNodata set).
 void recordNodataBits(const Heightfield& hf, Quadtree& qt, int threads)
 {
@@ -375,6 +399,7 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
     }
   });
   recordNodataBits(hf, qt, threads);
+  markAllNodataBlocks(qt);
   qt.nodes.reserve(2 * static_cast<std::size_t>(qt.blockCount()));
   qt.nodes.resize(1);
   buildNode(qt, 0, 0, qt.blockCols, 0, qt.blockRows);

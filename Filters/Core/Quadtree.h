@@ -39,6 +39,11 @@ struct QuadtreeNode
   // covers samples colStart[colBegin]..colStart[colEnd] x rowStart[rowBegin]..rowStart[rowEnd].
   int32_t colBegin = 0, colEnd = 0, rowBegin = 0, rowEnd = 0;
   int32_t height = 0; // levels down to its deepest leaf (0 for a leaf)
+  // Every sample below is nodata (Quadtree::everySampleNodata for each of its blocks): the
+  // node draws nothing at any level, so the selection's walks skip it as they skip a node
+  // out of view (an SRTM tile on a coast is about half sea: its void blocks were most of
+  // the blocks a frame walked, levelled, morphed and tessellated).
+  bool allNodata = false;
 };
 
 struct Quadtree
@@ -50,6 +55,7 @@ struct Quadtree
   std::vector<QuadtreeNode> nodes; // nodes[0] is the root
   std::vector<Box> blockBox;       // per block, world bounds (z over valid samples)
   std::vector<uint8_t> blockHasNodata; // per block: any NaN sample inside (borders included)
+  std::vector<uint8_t> blockAllNodata; // per block: every sample (borders included) is NaN
   // Per block: its width and height in quads (colStart and rowStart differences), read by
   // every per-block step of a frame: a lookup instead of block % blockCols and
   // block / blockCols (2.6 % of a 4097^2 mapper-default frame's instructions).
@@ -98,21 +104,8 @@ struct Quadtree
     return (nodataBits[nodataBitsAt[block] + bit / 64] >> (bit % 64)) & 1u;
   }
   // Whether every sample of `block` (borders included) is nodata: nothing of it is drawn
-  // at any level.
-  bool everySampleNodata(int block) const
-  {
-    if (!blockHasNodata[block])
-    {
-      return false;
-    }
-    const uint64_t bits = static_cast<uint64_t>(blockWidth(block) + 1) * (blockHeight(block) + 1);
-    uint64_t set = 0;
-    for (uint64_t w = 0; w < (bits + 63) / 64; ++w)
-    {
-      set += static_cast<uint64_t>(__builtin_popcountll(nodataBits[nodataBitsAt[block] + w]));
-    }
-    return set == bits;
-  }
+  // at any level, and no selection draws it (QuadtreeNode::allNodata).
+  bool everySampleNodata(int block) const { return blockAllNodata[block] != 0; }
   // The blocks across the South, East, North and West sides of `block` (Tessellate.h's Side
   // order: low row, high column, high row, low column), -1 where the DEM ends.
   std::array<int, 4> blockNeighbours(int block) const

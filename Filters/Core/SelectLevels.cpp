@@ -24,6 +24,10 @@ namespace
 void markSubtree(const Quadtree& qt, int node, std::vector<uint8_t>& visible, std::vector<int>& list)
 {
   const QuadtreeNode& n = qt.nodes[node];
+  if (n.allNodata)
+  {
+    return;
+  }
   if (n.childCount == 0)
   {
     visible[n.block] = 1;
@@ -516,11 +520,16 @@ void selectLevelsForError(
   const Quadtree& qt, const ErrorTable& table, double maxError, std::vector<int8_t>& levels)
 {
   std::vector<double> budget(qt.blockCount(), maxError);
-  levels.assign(qt.blockCount(), 0);
-  std::vector<int> all(static_cast<std::size_t>(qt.blockCount()));
+  levels.assign(qt.blockCount(), -1);
+  std::vector<int> all;
+  all.reserve(static_cast<std::size_t>(qt.blockCount()));
   for (int b = 0; b < qt.blockCount(); ++b)
   {
-    all[b] = b;
+    if (!qt.everySampleNodata(b)) // draws nothing at any level: not drawn
+    {
+      levels[b] = 0;
+      all.push_back(b);
+    }
   }
   SelectionScratch scratch;
   selectWithBudgets(qt, table, budget, all, levels, scratch);

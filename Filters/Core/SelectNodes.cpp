@@ -33,6 +33,10 @@ public:
   void node(int index, bool inside)
   {
     const QuadtreeNode& n = qt_.nodes[index];
+    if (n.allNodata)
+    {
+      return; // draws nothing at any level
+    }
     if (!inside)
     {
       // Inside a node wholly in view, every descendant is: no more plane tests below.

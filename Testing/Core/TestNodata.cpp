@@ -370,3 +370,50 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   EXPECT_EQ(s.triangles, 2u * ((2 * 2 + 2 * 3 + 2 * 26) + 15 + 12 + 6) + 2 * 2);
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }
+
+TEST(Nodata, VoidBlocksAreNeitherWalkedNorDrawn)
+{
+  // A coastal SRTM tile is about half sea (nodata): a block whose every sample is nodata
+  // draws nothing at any level, and counting it as drawn made the void most of what a frame
+  // walked. 65 x 65 samples in blocks of 8 quads (8 x 8 blocks); samples 16..40 x 8..32
+  // are void, so blocks (2..4, 1..3) are nodata to their borders: 9 of 64, counted by hand.
+  Rng rng(7);
+  gmm::Heightfield hf = roughTerrain(65, 65, rng);
+  for (int j = 8; j <= 32; ++j)
+    for (int i = 16; i <= 40; ++i)
+      hf.z[hf.index(i, j)] = kNaN;
+  for (bool merged : { false, true })
+  {
+    gmm::Engine e;
+    ASSERT_EQ(e.setHeightfield(hf, 8, 1), "");
+    e.setMergedNodes(merged);
+    const gmm::Quadtree& qt = e.quadtree();
+    ASSERT_EQ(qt.blockCount(), 64);
+    auto expectVoidNotDrawn = [&](const std::string& what) {
+      for (int r = 0; r < qt.blockRows; ++r)
+        for (int c = 0; c < qt.blockCols; ++c)
+        {
+          const bool isVoid = c >= 2 && c <= 4 && r >= 1 && r <= 3;
+          EXPECT_EQ(e.levels()[qt.blockIndex(c, r)] == -1, isVoid) << what << " block (" << c << ", " << r << ")";
+        }
+      EXPECT_EQ(e.stats().visibleBlocks, 55) << what;
+      checkFrame(e, what, true); // every valid cell still drawn once, nothing over nodata
+    };
+    for (double err : { 0.0, 3.0, 1e9 })
+    {
+      e.updateForError(err);
+      expectVoidNotDrawn("merged " + std::to_string(merged) + ", updateForError " + std::to_string(err));
+    }
+    gmm::View v; // the whole DEM (640 m a side) in view, from high above its centre
+    v.eye = { hf.worldX(32), hf.worldY(32), 3000.0 };
+    v.forward = { 0.0, 0.05, -1.0 };
+    v.up = { 0.0, 1.0, 0.0 };
+    v.fovYDegrees = 60;
+    for (double tau : { 0.5, 4.0 })
+    {
+      e.update(v, tau);
+      ASSERT_EQ(e.lastError(), "");
+      expectVoidNotDrawn("merged " + std::to_string(merged) + ", update tau " + std::to_string(tau));
+    }
+  }
+}
