@@ -85,6 +85,8 @@ struct MorphPartScratch
   std::vector<double> displacement; // per block vertex: target height - height
   VertexMarks displaced;            // per call: the vertices whose displacement is set
   VertexMarks measured;             // per part: the vertices measured once (exact weights)
+  std::vector<int> samples;         // tablePartBounds: a side's samples at a level
+  std::vector<GridPoint> polyline;  // and their grid points
 };
 
 // Errors of every part of `block` drawn with `config`, its interior moving toward level
@@ -113,12 +115,19 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
 // block's own error at its level with its own edges, or the strip table's for a coarser
 // edge), D_ring the block's exact error at its target level with its own edges (a ring
 // vertex goes to that surface, blockVertexTarget), D_edge the strip table's error of the
-// side at the edge's target level (which covers that polyline's samples). Blocks with a side
-// that may be drawn at full resolution are left out (their targets do not follow that side).
-// Returns the parts of `parts` whose bounds are all <= budget, written into `errors` with
+// side at the edge's target level (which covers that polyline's samples). Where level m
+// nests in the target (a power-of-two block going one level up, Levels.h), a part with
+// every vertex at its target is the target's surface: the inner grid's second corner is
+// D_ring itself, and so is the last corner of a strip of the block's own cells (edge level
+// m) whose edge moves to the same target; such a strip with only its ring vertices moved
+// is that surface less the edge vertices' moves, within D_ring + p (p the side's samples'
+// largest distance from its polyline at the target, measured along the side: one line of
+// samples, not the strip's area). Blocks with a side that may be drawn at full resolution
+// are left out (their targets do not follow that side). Returns the parts of `parts` whose bounds are all <= budget, written into `errors` with
 // their bits set in errors.bounded; the other parts are left as they are.
-unsigned tablePartBounds(const ErrorTable& table, const Quadtree& qt, int block, const BlockConfig& config,
-  int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget, PartErrors& errors);
+unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Quadtree& qt, int block,
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
+  PartErrors& errors, MorphPartScratch& scratch);
 
 // The parts in errors.bounded whose largest corner exceeds `budget`: bounds that no longer
 // prove their part within a smaller budget, so it must be measured.

@@ -71,8 +71,8 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
     parts |= boundedPartsOver(state.errors, budget);
     if (parts && table)
     {
-      parts &= ~tablePartBounds(*table, qt, b, cfg, out.blockTarget[b], edgeTargetsOf(cache.edges[k]), parts,
-        budget, state.errors);
+      parts &= ~tablePartBounds(hf, *table, qt, b, cfg, out.blockTarget[b], edgeTargetsOf(cache.edges[k]), parts,
+        budget, state.errors, cache.scratch);
     }
     if (parts)
     {

@@ -2,14 +2,54 @@
 // what lets a frame skip measuring the parts of blocks whose budget is loose.
 #include "MorphBounds.h"
 
+#include "Levels.h"
+#include "RasterError.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace gmm
 {
 
-unsigned tablePartBounds(const ErrorTable& table, const Quadtree& qt, int block, const BlockConfig& config,
-  int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget, PartErrors& errors)
+namespace
+{
+bool powerOfTwo(int n)
+{
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
+// Whether `block` at level m, its vertices moved onto level `target`'s surface, is that
+// surface: a power-of-two block (Levels.h, cellAntiDiagonal) going one level up, to a ring
+// or, square, to its one quad (whose diagonal is one of the two its 2 x 2 cells' splits
+// draw through the centre).
+bool nestsInTarget(const Quadtree& qt, int block, int m, int target)
+{
+  const int w = qt.blockWidth(block), h = qt.blockHeight(block);
+  return target == m + 1 && powerOfTwo(w) && powerOfTwo(h) && (qt.blockIsRingAt(block, target) || w == h);
+}
+
+// The largest distance of the samples along `side` of `block` from the side's polyline at
+// `level`: how far an edge vertex moves toward that polyline, at most.
+double sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
+  std::vector<int>& samples, std::vector<GridPoint>& points)
+{
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const bool alongI = side == 0 || side == 2; // South and North run along i
+  edgeSamples(alongI ? i0 : j0, alongI ? i1 : j1, level, samples);
+  const int fixed = side == 0 ? j0 : (side == 1 ? i1 : (side == 2 ? j1 : i0));
+  points.clear();
+  for (int s : samples)
+  {
+    points.push_back(alongI ? GridPoint{ s, fixed } : GridPoint{ fixed, s });
+  }
+  return polylineError(hf, points);
+}
+} // namespace
+
+unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Quadtree& qt, int block,
+  const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
+  PartErrors& errors, MorphPartScratch& scratch)
 {
   const int m = config.level;
   if (target <= m || target >= table.levels || qt.blockHasNodata[block])
@@ -29,11 +69,15 @@ unsigned tablePartBounds(const ErrorTable& table, const Quadtree& qt, int block,
   {
     return 0;
   }
+  // Where level m nests in the target, a part with all its vertices at their targets is
+  // the target's surface, within `ring` (not own + ring).
+  const bool nests = nestsInTarget(qt, block, m, target);
+  const double innerAtTarget = nests ? ring : own + ring;
   unsigned fit = 0;
-  if ((parts & 1u) && own + ring <= budget)
+  if ((parts & 1u) && std::max(own, innerAtTarget) <= budget)
   {
     errors.inner[0] = own;
-    errors.inner[1] = own + ring;
+    errors.inner[1] = innerAtTarget;
     errors.innerFrozen = false;
     fit |= 1u;
   }
@@ -50,16 +94,38 @@ unsigned tablePartBounds(const ErrorTable& table, const Quadtree& qt, int block,
       continue;
     }
     const double drawn = n > m ? table.strip(block, side, m, n) : own;
-    const double edge = edgeTarget[side] >= 0 ? table.strip(block, side, m, edgeTarget[side]) : 0.0;
-    if (!std::isfinite(drawn) || !std::isfinite(edge) || drawn + ring + edge > budget)
+    double edge = edgeTarget[side] >= 0 ? table.strip(block, side, m, edgeTarget[side]) : 0.0;
+    if (!std::isfinite(drawn) || !std::isfinite(edge))
+    {
+      continue;
+    }
+    double corners[4] = { drawn, drawn + ring, drawn + edge, drawn + ring + edge };
+    if (nests && n == m && (edgeTarget[side] == target || edgeTarget[side] < 0))
+    {
+      // The strip is a row of the block's own cells. With every vertex at the target
+      // (edge vertices onto the side's polyline at `target`) it is the target's surface,
+      // within `ring`; moving only the ring vertices leaves it that surface less the edge
+      // vertices' moves, each at most p, the polyline's distance from the side's samples.
+      const double p = sidePolylineError(hf, qt, block, side, target, scratch.samples, scratch.polyline);
+      const double ringOnly = std::min(drawn + ring, ring + p);
+      if (edgeTarget[side] == target)
+      {
+        edge = std::min(edge, p);
+        corners[1] = ringOnly;
+        corners[2] = drawn + edge;
+        corners[3] = ring;
+      }
+      else
+      {
+        corners[1] = corners[3] = ringOnly;
+      }
+    }
+    if (std::max({ corners[0], corners[1], corners[2], corners[3] }) > budget)
     {
       continue;
     }
     double* e = errors.side[side];
-    e[0] = drawn;
-    e[1] = drawn + ring;
-    e[2] = drawn + edge;
-    e[3] = drawn + ring + edge;
+    std::copy(corners, corners + 4, e);
     errors.sideFrozen[side] = false;
     fit |= bit;
   }
