@@ -183,11 +183,11 @@ public:
 
   ///@{
   /**
-   * Geomorph merges too (off by default; as vtkGeoMipMapMapper::SetGeomorphMerges, which
+   * Geomorph merges too (on by default; as vtkGeoMipMapMapper::SetGeomorphMerges, which
    * has the measured pops and costs): while geomorphing, far terrain is drawn as a merged
    * quadtree node only where the node's blocks have reached their coarsest level on the
-   * geomorphing path, so that a merge or a split does not skip the path's levels. Costly in
-   * wide views of large DEMs.
+   * geomorphing path, so that a merge or a split does not skip the path's levels. It costs
+   * LOD time in wide views of large DEMs.
    */
   void SetGeomorphMerges(bool on);
   bool GetGeomorphMerges();

@@ -318,19 +318,21 @@ public:
 
   ///@{
   /**
-   * Geomorph merges too (off by default): while geomorphing, far terrain is drawn as a
+   * Geomorph merges too (on by default): while geomorphing, far terrain is drawn as a
    * merged quadtree node only where the node's blocks have reached their coarsest level on
    * the geomorphing path. A node over 2 x 2 blocks then draws exactly what its blocks
    * drew, so merging and splitting it moves nothing (nodes of more blocks replace their
    * children's fans by one, which still moves a little). With it off, a merge replaces
    * blocks that the path still holds several levels finer, and the surface jumps by up to
-   * about PixelError (measured on measure_popping.py's flights at PixelError 2 and the
-   * default block size, the worst jump between frames is 1.87 px over a fractal terrain
-   * and 1.56 px over Puget Sound, against 0.53 and 0.58 px with this on, for 0.4 and 1.6 %
-   * more triangles). The price is in wide views, where blocks stay finer for longer: a
-   * flight with a whole 16385^2 DEM ahead at PixelError 1 draws 3.1x the triangles and its
-   * LOD update takes 31 ms instead of 0.5 ms; 1.4x and 2.9 ms instead of 1.0 ms at 4097^2
-   * (Documentation/benchmarks-core.md, session 9).
+   * about PixelError. Measured at PixelError 2 and the default block size and range
+   * (measure_popping.py's slow flights; decision record 002), off against on: the worst
+   * jump between frames 1.85 against 1.10 px over N48W125, 1.78 against 0.90 over
+   * N41E001, 1.36 against 0.74 over measure_pop_causes' 1025^2 fractal, the mean of the
+   * frames' worst 0.37 / 0.33, 0.91 / 0.46 and 0.33 / 0.29 px, for 5.4 %, 6.0 % and 0.2 %
+   * more triangles. The price is in wide views, where blocks stay finer for longer: on
+   * bench_core's flight with a whole DEM ahead at PixelError 1, 3 % more triangles and a
+   * LOD update of 1.34 ms instead of 0.68 ms at 16385^2, 6 % and 2.2 instead of 1.5 ms at
+   * 4097^2.
    */
   void SetGeomorphMerges(bool on);
   bool GetGeomorphMerges();

@@ -44,10 +44,12 @@ struct FrameSettings
   double heightScale = 1.0;
   // Geomorphing (Morph.h): blocks on the level path of factor geomorphRange (MorphRamp.h),
   // their vertices moving toward the next coarser level within the bound; merges wait for
-  // the path when geomorphMerges is on.
+  // the path when geomorphMerges is on (the default: merged nodes' fans do not nest, and a
+  // merge that skips the path's levels was the largest cause of pops left; vtkGeoMipMapMapper
+  // documents what it costs).
   bool geomorphing = true;
   double geomorphRange = kDefaultMorphRange;
-  bool geomorphMerges = false;
+  bool geomorphMerges = true;
 };
 
 // The result of a frame. The triangles, their slots and the ranges this frame changed are

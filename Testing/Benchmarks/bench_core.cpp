@@ -16,7 +16,8 @@
 // BM_LodFlightMapperDefault: the whole-DEM flight with the CPU work the mapper does per frame
 // by default: Engine::update on geomorphing's level path (kDefaultMorphRange) and
 // computeMorph over the drawn blocks (the mapper draws the index arena: no concatenation);
-// GEOMIPMAP_BENCH_MERGE_ON_PATH=1 adds the mapper's SetGeomorphMerges (Engine::setMergeOnPath),
+// GEOMIPMAP_BENCH_MERGE_ON_PATH=0 or 1 sets the mapper's SetGeomorphMerges (Engine::setMergeOnPath;
+// default the mapper's),
 // GEOMIPMAP_BENCH_MORPH_RANGE=R sets its SetGeomorphRange (default kDefaultMorphRange).
 // Scene: synthetic terrain (gmm::makeSyntheticTerrain, 30 m spacing, seed 42), camera flying
 // a straight diagonal line from 30 % of the diagonal at 5 m per frame, 200 m above the highest
@@ -152,7 +153,8 @@ void runFlight(benchmark::State& state, int size, int blockQuads, double farDist
   gmm::FrameSettings settings;
   settings.pixelError = 1.0;
   settings.geomorphing = mapperDefault;
-  settings.geomorphMerges = mapperDefault && envInt("GEOMIPMAP_BENCH_MERGE_ON_PATH", 0) != 0;
+  settings.geomorphMerges =
+    mapperDefault && envInt("GEOMIPMAP_BENCH_MERGE_ON_PATH", gmm::FrameSettings().geomorphMerges ? 1 : 0) != 0;
   if (const char* range = std::getenv("GEOMIPMAP_BENCH_MORPH_RANGE"); range && *range)
     settings.geomorphRange = std::atof(range);
   const gmm::Engine& e = driver.engine();

@@ -18,9 +18,11 @@
 // same here (the screen measure is Testing/Core's, independent of the engine's bound).
 //
 //   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--step 0.04]
-//                      [--frames 120] [--threshold 0.3] [--merges]
+//                      [--frames 120] [--threshold 0.3] [--no-merges]
 //
-// --range 0 turns geomorphing off (levels switch at once). A measurement, not a test.
+// --range 0 turns geomorphing off (levels switch at once); --no-merges lets merges skip the
+// path's levels (the mapper's SetGeomorphMerges off; on by default, as in the mapper). A
+// measurement, not a test.
 #include "Engine.h"
 #include "Frame.h"
 #include "Morph.h"
@@ -98,7 +100,7 @@ int main(int argc, char** argv)
   const double stepBlocks = argOr(argc, argv, "--step", 0.04);
   const int frames = static_cast<int>(argOr(argc, argv, "--frames", 120));
   const double threshold = argOr(argc, argv, "--threshold", 0.3);
-  const bool merges = flag(argc, argv, "--merges");
+  const bool merges = gmm::FrameSettings().geomorphMerges && !flag(argc, argv, "--no-merges");
   if (!(tau >= 0.0) || block < 4 || n < 3 || frames < 2 || !(threshold > 0.0))
   {
     std::fprintf(stderr, "measure_pop_causes: bad arguments (see the file's header)\n");
@@ -212,7 +214,7 @@ int main(int argc, char** argv)
   char mode[64] = "no geomorphing";
   if (morphing)
   {
-    std::snprintf(mode, sizeof mode, "geomorphing range %g%s", range, merges ? ", merges on the path" : "");
+    std::snprintf(mode, sizeof mode, "geomorphing range %g%s", range, merges ? ", merges on the path" : ", merges off the path");
   }
   std::printf("fractal %d^2, block %d, tau %g, %s, %d frames of %g blocks: worst pop %.3f px, mean of "
               "frames' worst %.3f px, %.0f triangles a frame\n",

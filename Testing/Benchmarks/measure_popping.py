@@ -2,7 +2,7 @@
 
     /usr/bin/python3 measure_popping.py [--dem FILE.png --spacing M --zscale S] [--n 1025]
         [--dem FILE [--fill-voids]] [--tau 2] [--frames 120] [--step 0.02] [--block 64]
-        [--size 1280x720] [--range R] [--merges] [--quick]
+        [--size 1280x720] [--range R] [--no-merges] [--quick]
 
 The terrain: a 16-bit PNG DEM (e.g. ../shared/data/ps_height_1k.png, --spacing 160
 --zscale 0.1), any other DEM through vtkGeoMipMapTerrainReader (e.g.
@@ -10,7 +10,8 @@ The terrain: a 16-bit PNG DEM (e.g. ../shared/data/ps_height_1k.png, --spacing 1
 or, by default, vtkGeoMipMapFractalSource (n x n, 30 m, seed 1). The camera
 flies a straight line across the middle of the terrain, --step blocks (block size x
 spacing) per frame, at 250 m above the highest summit, looking ahead and 20 degrees down.
---merges turns on SetGeomorphMerges (merges wait for the geomorphing path) in both modes.
+--no-merges turns off SetGeomorphMerges (on by default: merges wait for the geomorphing
+path) in both modes.
 
 Popping of frame k: vtkGeoMipMapScreenError with frame k's mesh (vtkGeoMipMapFilter's
 output for frame k's camera: morphed heights when geomorphing) against frame k-1's mesh as
@@ -114,7 +115,7 @@ def main(argv):
         filt.SetGeomorphing(mode == "on")
         if "--range" in argv:
             filt.SetGeomorphRange(arg(argv, "--range", 3.0))
-        filt.SetGeomorphMerges("--merges" in argv)
+        filt.SetGeomorphMerges("--no-merges" not in argv)
         prev = None
         pops, p99s, errors, times, tris = [], [], [], [], []
         for f in range(frames):
@@ -166,7 +167,7 @@ def main(argv):
             mapper.SetGeomorphing(mode == "on")
             if "--range" in argv:
                 mapper.SetGeomorphRange(arg(argv, "--range", 3.0))
-            mapper.SetGeomorphMerges("--merges" in argv)
+            mapper.SetGeomorphMerges("--no-merges" not in argv)
             actor = vtkActor()
             actor.SetMapper(mapper)
             ren = vtkRenderer()

@@ -85,10 +85,10 @@ class Measured:
 
 
 def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0,
-             geomorphing=True, geomorph_merges=False):
+             geomorphing=True, geomorph_merges=None):
     """vtkGeoMipMapFilter's triangles for this camera, viewport size (w, h), tau, block
-    size, actor matrix (None: identity), height scale, geomorphing and geomorph merges: what
-    the mapper draws with them."""
+    size, actor matrix (None: identity), height scale, geomorphing and geomorph merges (None:
+    the filter's default, the mapper's): what the mapper draws with them."""
     import geomipmap
 
     filt = geomipmap.vtkGeoMipMapFilter()
@@ -100,7 +100,8 @@ def lod_mesh(image, camera, size, tau, block_size, matrix=None, height_scale=1.0
     filt.SetBlockSize(block_size)
     filt.SetHeightScale(height_scale)
     filt.SetGeomorphing(geomorphing)
-    filt.SetGeomorphMerges(geomorph_merges)
+    if geomorph_merges is not None:
+        filt.SetGeomorphMerges(geomorph_merges)
     filt.Update()
     return filt.GetOutput()
 
