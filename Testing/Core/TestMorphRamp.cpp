@@ -475,13 +475,15 @@ TEST(MorphRamp, FlightCertifiedAndSmooth)
   EXPECT_LE(path.worstPop, 0.5 * plain.worstPop);
   EXPECT_LE(path.meanPop, 0.6 * plain.meanPop);
   EXPECT_GE(path.triangles, plain.triangles); // the path is never coarser than needed
-  // The default range: less lag, so less smoothing, for fewer triangles (measured 0.552 px
-  // worst, mean 0.74x the plain factors', 4 % more triangles than them against 9 % at
-  // range 3).
-  const FlightOutcome byDefault = fly(hf, 32, tau, gmm::kDefaultMorphRange, 80);
-  std::printf("[ ramp ] the same at the default range %g: worst pop %.3f px, mean of frame worst %.3f, "
-              "measured error %.3f px, triangles %zu\n",
-    gmm::kDefaultMorphRange, byDefault.worstPop, byDefault.meanPop, byDefault.worstError, byDefault.triangles);
+  // The mapper's defaults: range 2 (less lag, so less smoothing, for fewer triangles) and
+  // merges on the path (measured 0.552 px worst, mean 0.74x the plain factors', 4 % more
+  // triangles than them against 9 % at range 3, with merges off).
+  const bool mergesByDefault = gmm::FrameSettings().geomorphMerges;
+  const FlightOutcome byDefault = fly(hf, 32, tau, gmm::kDefaultMorphRange, 80, 0.02, mergesByDefault);
+  std::printf("[ ramp ] the same with the mapper's defaults (range %g, merges on the path %d): worst pop %.3f "
+              "px, mean of frame worst %.3f, measured error %.3f px, triangles %zu\n",
+    gmm::kDefaultMorphRange, mergesByDefault, byDefault.worstPop, byDefault.meanPop, byDefault.worstError,
+    byDefault.triangles);
   EXPECT_LE(byDefault.worstPop, 0.6);
   EXPECT_LE(byDefault.worstPop, 0.5 * plain.worstPop);
   EXPECT_LE(byDefault.meanPop, 0.8 * plain.meanPop);
