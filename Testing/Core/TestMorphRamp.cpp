@@ -533,6 +533,19 @@ TEST(MorphRamp, MergesOnThePathDoNotPop)
   EXPECT_GT(free.worstPop, 1.0); // the flight sees merges pop
   EXPECT_LE(onPath.worstPop, 0.55);
   EXPECT_LE(onPath.worstError, tau);
+  // The same flight at the default range, where merges on the path are the mapper's default
+  // (FrameSettings): the blocks are held less far below their budget, what does not nest
+  // (strips toward coarser edges) pops more than at range 3, and merges still must not.
+  const FlightOutcome freeByDefault = fly(hf, 32, tau, gmm::kDefaultMorphRange, frames, 0.04, false);
+  const FlightOutcome byDefault =
+    fly(hf, 32, tau, gmm::kDefaultMorphRange, frames, 0.04, gmm::FrameSettings().geomorphMerges);
+  std::printf("[ ramp ] the same at the default range %g: worst pop %.3f px with the default merges, %.3f "
+              "with merges off the path; mean of frame worst %.3f (%.3f); triangles %zu (%zu)\n",
+    gmm::kDefaultMorphRange, byDefault.worstPop, freeByDefault.worstPop, byDefault.meanPop, freeByDefault.meanPop,
+    byDefault.triangles, freeByDefault.triangles);
+  EXPECT_GT(freeByDefault.worstPop, 1.0);
+  EXPECT_LE(byDefault.worstPop, 0.7 * freeByDefault.worstPop); // measured 0.64 against 1.09 px
+  EXPECT_LE(byDefault.worstError, tau);
 }
 
 TEST(MorphRamp, OnlyAFiniteRangeAboveOneFollowsThePath)
