@@ -85,8 +85,6 @@ struct MorphPartScratch
   std::vector<double> displacement; // per block vertex: target height - height
   VertexMarks displaced;            // per call: the vertices whose displacement is set
   VertexMarks measured;             // per part: the vertices measured once (exact weights)
-  std::vector<int> samples;         // tablePartBounds: a side's samples at a level
-  std::vector<GridPoint> polyline;  // and their grid points
 };
 
 // Errors of every part of `block` drawn with `config`, its interior moving toward level
@@ -123,8 +121,9 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
 // is that surface less the edge vertices' moves, within D_ring + p (p the side's samples'
 // largest distance from its polyline at the target, measured along the side: one line of
 // samples, not the strip's area). Blocks with a side that may be drawn at full resolution
-// are left out (their targets do not follow that side). Returns the parts of `parts` whose bounds are all <= budget, written into `errors` with
-// their bits set in errors.bounded; the other parts are left as they are.
+// are left out (their targets do not follow that side). Returns the parts of `parts` whose
+// bounds are all <= budget, written into `errors` with their bits set in errors.bounded;
+// the other parts are left as they are.
 unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
   PartErrors& errors, MorphPartScratch& scratch);

@@ -2,8 +2,8 @@
 // what lets a frame skip measuring the parts of blocks whose budget is loose.
 #include "MorphBounds.h"
 
-#include "Levels.h"
 #include "RasterError.h"
+#include "Tessellate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,22 +28,15 @@ bool nestsInTarget(const Quadtree& qt, int block, int m, int target)
   return target == m + 1 && powerOfTwo(w) && powerOfTwo(h) && (qt.blockIsRingAt(block, target) || w == h);
 }
 
-// The largest distance of the samples along `side` of `block` from the side's polyline at
-// `level`: how far an edge vertex moves toward that polyline, at most.
-double sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
-  std::vector<int>& samples, std::vector<GridPoint>& points)
+// The largest distance of the samples along `side` of ring `block` at `config` from the
+// side's polyline at `level`: how far an edge vertex moves toward that polyline, at most.
+// The polyline is the strip's edge line toward an edge at that level (sidePolylines).
+double sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, BlockConfig config, int side,
+  int level, EmitScratch& scratch)
 {
-  const int c = block % qt.blockCols, r = block / qt.blockCols;
-  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
-  const bool alongI = side == 0 || side == 2; // South and North run along i
-  edgeSamples(alongI ? i0 : j0, alongI ? i1 : j1, level, samples);
-  const int fixed = side == 0 ? j0 : (side == 1 ? i1 : (side == 2 ? j1 : i0));
-  points.clear();
-  for (int s : samples)
-  {
-    points.push_back(alongI ? GridPoint{ s, fixed } : GridPoint{ fixed, s });
-  }
-  return polylineError(hf, points);
+  config.edgeLevel[side] = level;
+  sidePolylines(qt, block, config, side, scratch);
+  return polylineError(hf, scratch.outer);
 }
 } // namespace
 
@@ -106,7 +99,7 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
       // (edge vertices onto the side's polyline at `target`) it is the target's surface,
       // within `ring`; moving only the ring vertices leaves it that surface less the edge
       // vertices' moves, each at most p, the polyline's distance from the side's samples.
-      const double p = sidePolylineError(hf, qt, block, side, target, scratch.samples, scratch.polyline);
+      const double p = sidePolylineError(hf, qt, block, config, side, target, scratch.emit);
       const double ringOnly = std::min(drawn + ring, ring + p);
       if (edgeTarget[side] == target)
       {

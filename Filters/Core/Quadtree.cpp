@@ -50,8 +50,9 @@ void grow(Box& b, const Box& o)
 }
 
 // Leaf box over samples [i0, i1] x [j0, j1]; z from valid heights only. A block whose
-// samples are all nodata gets an empty z range at 0 (it draws nothing; culling keeps it cheap).
-Box sampleBox(const Heightfield& hf, int i0, int i1, int j0, int j1, bool& hasNodata)
+// samples are all nodata (allNodata) gets an empty z range at 0: it draws nothing, and the
+// selection's walks skip it (QuadtreeNode::allNodata).
+Box sampleBox(const Heightfield& hf, int i0, int i1, int j0, int j1, bool& hasNodata, bool& allNodata)
 {
   float zmin = std::numeric_limits<float>::infinity();
   float zmax = -zmin;
@@ -71,7 +72,8 @@ Box sampleBox(const Heightfield& hf, int i0, int i1, int j0, int j1, bool& hasNo
       zmax = std::max(zmax, h);
     }
   }
-  if (zmin > zmax)
+  allNodata = zmin > zmax; // no valid sample
+  if (allNodata)
   {
     zmin = zmax = 0.0f;
   }
@@ -277,26 +279,6 @@ std::vector<uint8_t> upperHalfBands(int bands)
 
 namespace
 {
-// Quadtree::blockAllNodata from the nodata bits: a block whose every bit is set.
-void markAllNodataBlocks(Quadtree& qt)
-{
-  qt.blockAllNodata.assign(static_cast<std::size_t>(qt.blockCount()), 0);
-  for (int b = 0; b < qt.blockCount(); ++b)
-  {
-    if (!qt.blockHasNodata[b])
-    {
-      continue;
-    }
-    const uint64_t bits = static_cast<uint64_t>(qt.blockWidth(b) + 1) * (qt.blockHeight(b) + 1);
-    uint64_t set = 0;
-    for (uint64_t w = 0; w < (bits + 63) / 64; ++w)
-    {
-      set += static_cast<uint64_t>(__builtin_popcountll(qt.nodataBits[qt.nodataBitsAt[b] + w]));
-    }
-    qt.blockAllNodata[b] = set == bits ? 1 : 0;
-  }
-}
-
 // Quadtree::nodataBits for every block with nodata (blockHasNodata set).
 void recordNodataBits(const Heightfield& hf, Quadtree& qt, int threads)
 {
@@ -376,6 +358,7 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
   qt.rowUpperHalf = upperHalfBands(qt.blockRows);
   resizeOnHugePages(qt.blockBox, qt.blockCount());
   resizeOnHugePages(qt.blockHasNodata, qt.blockCount());
+  qt.blockAllNodata.resize(static_cast<std::size_t>(qt.blockCount()));
   qt.blockWidths.resize(qt.blockCount());
   qt.blockHeights.resize(qt.blockCount());
   qt.blockTopLevels.resize(qt.blockCount());
@@ -386,11 +369,12 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
     {
       for (int c = 0; c < qt.blockCols; ++c)
       {
-        bool nodata = false;
+        bool nodata = false, allNodata = false;
         const int b = qt.blockIndex(c, r);
         qt.blockBox[b] =
-          sampleBox(hf, qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1], nodata);
+          sampleBox(hf, qt.colStart[c], qt.colStart[c + 1], qt.rowStart[r], qt.rowStart[r + 1], nodata, allNodata);
         qt.blockHasNodata[b] = nodata ? 1 : 0;
+        qt.blockAllNodata[b] = allNodata ? 1 : 0;
         qt.blockWidths[b] = qt.colStart[c + 1] - qt.colStart[c];
         qt.blockHeights[b] = qt.rowStart[r + 1] - qt.rowStart[r];
         qt.blockTopLevels[b] = static_cast<uint8_t>(topLevel(qt.blockWidths[b], qt.blockHeights[b]));
@@ -399,7 +383,6 @@ Quadtree buildQuadtree(const Heightfield& hf, int maxBlockQuads, int threads)
     }
   });
   recordNodataBits(hf, qt, threads);
-  markAllNodataBlocks(qt);
   qt.nodes.reserve(2 * static_cast<std::size_t>(qt.blockCount()));
   qt.nodes.resize(1);
   buildNode(qt, 0, 0, qt.blockCols, 0, qt.blockRows);

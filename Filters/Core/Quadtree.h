@@ -41,8 +41,7 @@ struct QuadtreeNode
   int32_t height = 0; // levels down to its deepest leaf (0 for a leaf)
   // Every sample below is nodata (Quadtree::everySampleNodata for each of its blocks): the
   // node draws nothing at any level, so the selection's walks skip it as they skip a node
-  // out of view (an SRTM tile on a coast is about half sea: its void blocks were most of
-  // the blocks a frame walked, levelled, morphed and tessellated).
+  // out of view (an SRTM tile on a coast is about half sea).
   bool allNodata = false;
 };
 

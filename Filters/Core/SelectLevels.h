@@ -43,8 +43,9 @@ enum class Overlap
 Overlap boxVsFrustum(const Box& box, const Frustum& fr);
 
 // Calls accept(node) for every node with a valid sample (QuadtreeNode::allNodata) whose box
-// the frustum meets and that is wholly inside it or a leaf, descending only through the nodes its planes cut (boxVsFrustum), from `node`
-// down: the walk of cullBlocks, so that its cost follows the frustum's boundary.
+// the frustum meets and that is wholly inside it or a leaf, descending only through the
+// nodes its planes cut (boxVsFrustum), from `node` down: the walk of cullBlocks, so that
+// its cost follows the frustum's boundary.
 template <class Accept>
 void forNodesInFrustum(const Quadtree& qt, int node, const Frustum& fr, Accept&& accept)
 {

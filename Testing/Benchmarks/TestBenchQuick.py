@@ -75,9 +75,9 @@ if not (0 < mean_tri[True] and 0 < mean_tri[False] and mean_tri[True] != mean_tr
 # --geomorph-range reaches ours' mapper and filters: a range of 3 lags the certificate more
 # than the default 2 on the synthetic terrain, whose errors about double a level (design.md,
 # "The level path"), so ours draws more triangles, still within tau; 0 is bad input.
-import geomipmap  # noqa: E402
+from geomipmap_apps import command  # noqa: E402
 
-default_range = geomipmap.vtkGeoMipMapMapper().GetGeomorphRange()
+default_range = command.default_geomorph_range()
 range_tri = {}
 for r in (None, 3):
     folder = os.path.join(scratch, f"range{r or 'default'}")

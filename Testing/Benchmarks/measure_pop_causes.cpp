@@ -214,7 +214,7 @@ int main(int argc, char** argv)
   char mode[64] = "no geomorphing";
   if (morphing)
   {
-    std::snprintf(mode, sizeof mode, "geomorphing range %g%s", range, merges ? ", merges on the path" : ", merges off the path");
+    std::snprintf(mode, sizeof mode, "geomorphing range %g, merges %s the path", range, merges ? "on" : "off");
   }
   std::printf("fractal %d^2, block %d, tau %g, %s, %d frames of %g blocks: worst pop %.3f px, mean of "
               "frames' worst %.3f px, %.0f triangles a frame\n",
