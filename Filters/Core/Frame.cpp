@@ -68,6 +68,7 @@ void FrameDriver::morphSelection(const FrameSettings& settings)
   const bool morphed = settings.geomorphing && hasSelection_ && cameraSelection_ && engine_.stats().triangles > 0;
   if (morphed && !morphCurrent_)
   {
+    morphCache_.measureLimit = settings.geomorphMeasureSamples;
     computeMorph(engine_.heightfield(), engine_.quadtree(), engine_.levels(), engine_.pixelFactors(),
       morphErrorBudget(engine_.stats(), settings.pixelError), morphCache_, morph_, engine_.morphRamp(),
       &engine_.drawnBlocks(), &engine_.drawnConfigs(), &engine_.errorTable());

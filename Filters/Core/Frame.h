@@ -50,6 +50,11 @@ struct FrameSettings
   bool geomorphing = true;
   double geomorphRange = kDefaultMorphRange;
   bool geomorphMerges = true;
+  // The most full-resolution samples a frame rasterises to measure geomorphing's part
+  // errors (MorphCache::measureLimit; 0: no limit). A jump of the camera changes nearly
+  // every drawn block's configuration; past the limit the farthest blocks morph by the
+  // error table's looser bounds for a few frames instead of the frame waiting for all.
+  std::size_t geomorphMeasureSamples = kDefaultMorphMeasureSamples;
 };
 
 // The result of a frame. The triangles, their slots and the ranges this frame changed are

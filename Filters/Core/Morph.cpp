@@ -251,6 +251,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     cache.freeSlots.clear();
     cache.held.clear();
     cache.inner.reset(blocks);
+    cache.polylines.reset(blocks);
     cache.heights = hf.heights();
   }
   // The drawn blocks: the caller's list, or found in the levels.
@@ -269,6 +270,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       }
     }
   }
+  cache.firstFrame = cache.held.empty();
   assignSlots(drawn, cache);
   const bool limited = ramp && ramp->active();
   const double slope = limited ? ramp->slope() : 0.0;
@@ -358,7 +360,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   {
     const int b = drawn[k];
     MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
-    if (out.blockTarget[b] < 0 || budget[k] < 0.0)
+    if (out.blockTarget[b] < 0 || budget[k] < 0.0 || cache.deferred[k] == kMorphHeld)
     {
       continue;
     }
@@ -459,12 +461,15 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
     out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
   }
-  // History for the next frame's rise limit (none from a frame without the path).
+  // History for the next frame's rise limit: none from a frame without the path, nor for a
+  // block whose factor came from bounds its measurement will replace (refreshPartErrors,
+  // past the frame's measuring limit): it takes the measured factor when it has it, instead
+  // of rising to it from the smaller one over many frames, behind its level path.
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
     MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
-    const bool keep = limited && b < static_cast<int>(factor.size());
+    const bool keep = limited && b < static_cast<int>(factor.size()) && cache.deferred[k] == kMorphMeasured;
     state.lastLambda = keep ? chainAt[k] + out.blockT[b] : -1.0;
     state.lastFactor = keep ? factor[b] : 0.0;
   }

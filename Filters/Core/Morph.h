@@ -68,6 +68,15 @@ struct MorphFrame
 };
 
 
+// FrameSettings::geomorphMeasureSamples' default: about the samples this many 32 x 32
+// blocks at level 0 hold. (Measured: see MorphCache::measureLimit's users.)
+constexpr std::size_t kDefaultMorphMeasureSamples = std::size_t{ 1 } << 16;
+
+// How a drawn block's part errors stand in a frame (MorphCache::deferred): measured (or
+// proven by the table), bounded by the table above its budget while its measurement waits
+// for a later frame, or held still (no morph) while it waits.
+constexpr uint8_t kMorphMeasured = 0, kMorphBounded = 1, kMorphHeld = 2;
+
 // What computeMorph remembers of one drawn block from frame to frame.
 struct MorphBlockState
 {
@@ -100,6 +109,13 @@ struct MorphBlockState
 // depend on the key only).
 struct MorphCache
 {
+  // Input: the most samples (about) a frame rasterises to measure part errors, 0 for no
+  // limit. Past it, parts are bounded from the table and measured in later frames, nearest
+  // blocks first (refreshPartErrors): a jump of the camera changes nearly every block's
+  // key, and measuring them all was 3/4 of such a frame. A frame that follows none drawn
+  // (the first) measures everything, so that a flight starts from measured factors.
+  std::size_t measureLimit = 0;
+  bool firstFrame = true; // per frame (scratch): the last frame drew no block
   std::vector<int32_t> slotOf;          // per block: its slot, or -1
   std::vector<MorphBlockState> slots;
   std::vector<int32_t> freeSlots;
@@ -109,6 +125,7 @@ struct MorphCache
   MorphPartScratch scratch;
   std::vector<MorphPartScratch> workerScratch; // for the threads beyond the calling one
   InnerErrorMemo inner;                 // inner-grid errors by block and level
+  SidePolylineMemo polylines;           // sides' polyline distances by block, side and level
   // Per frame (scratch): the drawn blocks whose parts are measured (index k into the drawn
   // blocks, and the parts as a MorphBounds.h mask).
   std::vector<std::pair<std::size_t, unsigned>> measures;
@@ -120,6 +137,7 @@ struct MorphCache
   std::vector<uint8_t> morphs;          // per drawn block: its factors were computed
   std::vector<int> chainAt;             // per drawn block: chainIndex of its level
   std::vector<double> budgets;          // per drawn block: tau / its factor, -1 if it does not morph
+  std::vector<uint8_t> deferred;        // per drawn block: kMorphMeasured, kMorphBounded or kMorphHeld
 
   // The rise limit's history of block b: its drawn continuous level in the last frame, or
   // -1 when it was not drawn or that frame did not follow the path.
@@ -164,7 +182,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
 // key changed are bounded from `table` where that proves them within the block's budget
 // (tablePartBounds; kept bounds that a smaller budget no longer allows are measured again),
 // else measured (updateMorphPartErrors), on all cores when many blocks need it (a jump of
-// the camera or another tau changes nearly all). MorphPartCache.cpp.
+// the camera or another tau changes nearly all). Past cache.measureLimit samples, the
+// blocks with the loosest budgets take the table's bounds even where those exceed their
+// budget (smaller factors, still certified) and are measured in the frames after, as
+// bounds that no longer prove their part are. MorphPartCache.cpp.
 void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFrame& out, MorphCache& cache,
   const ErrorTable* table = nullptr);
 

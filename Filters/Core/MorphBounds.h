@@ -121,12 +121,37 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
 // is that surface less the edge vertices' moves, within D_ring + p (p the side's samples'
 // largest distance from its polyline at the target, measured along the side: one line of
 // samples, not the strip's area). Blocks with a side that may be drawn at full resolution
-// are left out (their targets do not follow that side). Returns the parts of `parts` whose
-// bounds are all <= budget, written into `errors` with their bits set in errors.bounded;
-// the other parts are left as they are.
+// are left out (their targets do not follow that side). Writes the bounds of every part of
+// `parts` it bounds into `errors`, with their bits set in errors.bounded (the other parts
+// are left as they are), and returns those whose bounds are all <= budget.
+// `polylines`, when given, keeps each side's polyline distance p from call to call.
+class SidePolylineMemo;
 unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
-  PartErrors& errors, MorphPartScratch& scratch);
+  PartErrors& errors, MorphPartScratch& scratch, SidePolylineMemo* polylines = nullptr);
+
+// The largest distance of the samples along `side` of `block` from the side's polyline at
+// `level` (its samples at that level's step, edgeSamples): how far an edge vertex moves
+// toward that polyline, at most (+inf with nodata on the side).
+float sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
+  EmitScratch& scratch);
+
+// sidePolylineError by block, side and level, measured once while the heights are the
+// same: tablePartBounds asks it for every strip of a power-of-two block whose key changed,
+// every block of a frame after a jump of the camera (a fifth of such a frame's morph work
+// at 4097^2 before it was kept). A block's entries (4 sides, one per level up to its top, 4
+// bytes each) are made the first time it is asked, so memory follows the blocks drawn.
+class SidePolylineMemo
+{
+public:
+  float at(const Heightfield& hf, const Quadtree& qt, int block, int side, int level, EmitScratch& scratch);
+  // Forgets everything, for `blocks` blocks.
+  void reset(int blocks);
+
+private:
+  std::vector<int32_t> first; // per block: its first entry (side 0, level 0), or -1
+  std::vector<float> values;  // NaN: not measured yet
+};
 
 // The parts in errors.bounded whose largest corner exceeds `budget`: bounds that no longer
 // prove their part within a smaller budget, so it must be measured.

@@ -1,6 +1,7 @@
 // Geomorphing's part errors kept from frame to frame (Morph.h, refreshPartErrors): each
 // drawn block's errors follow its key, reused where they can be and measured where they
-// cannot, the measuring spread over the cores.
+// cannot, the measuring spread over the cores and, past the frame's limit, left to later
+// frames with the error table's bounds meanwhile.
 #include "Morph.h"
 
 #include "Parallel.h"
@@ -30,6 +31,71 @@ std::array<int, 4> edgeTargetsOf(const std::array<MorphEdge*, 4>& edges)
 {
   return { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
 }
+
+// About how many samples measuring `parts` of `block` at `level` rasterises: the block for
+// its inner grid, a side times the ring's width (a strip reaches from the border to the
+// inner ring, one cell of the level in) for each strip. What the frame's limit counts.
+std::size_t partSamples(const Quadtree& qt, int block, int level, unsigned parts)
+{
+  const std::size_t w = static_cast<std::size_t>(qt.blockWidth(block)) + 1;
+  const std::size_t h = static_cast<std::size_t>(qt.blockHeight(block)) + 1;
+  const std::size_t ring = (std::size_t{ 1 } << std::min(level, 30)) + 1;
+  std::size_t samples = (parts & 1u) ? w * h : 0;
+  for (int side = 0; side < 4; ++side)
+  {
+    if (parts & (2u << side))
+    {
+      samples += (side == South || side == North ? w : h) * std::min(ring, side == South || side == North ? h : w);
+    }
+  }
+  return samples;
+}
+
+// Past the frame's limit (MorphCache::measureLimit): keeps measuring the blocks with the
+// tightest budgets (the nearest: where the factors matter most and tables prove least),
+// in that order until the limit. The other blocks are deferred (cache.deferred): their
+// parts keep the error table's bounds that refreshPartErrors wrote for them whatever their
+// budget, which are certified but above the budget, so the factors they give are smaller
+// than the measured ones; a block with a part the table could not bound does not morph
+// this frame at all, and forgets its key. The next frames measure both (boundedPartsOver,
+// a changed key), each frame again up to its limit.
+void deferPastLimit(const Quadtree& qt, const MorphFrame& out, MorphCache& cache)
+{
+  std::vector<std::pair<std::size_t, unsigned>>& measures = cache.measures;
+  std::size_t total = 0;
+  for (const auto& m : measures)
+  {
+    total += partSamples(qt, out.blocks[m.first], cache.configs[m.first].level, m.second);
+  }
+  if (total <= cache.measureLimit)
+  {
+    return;
+  }
+  std::stable_sort(measures.begin(), measures.end(),
+    [&cache](const auto& a, const auto& b) { return cache.budgets[a.first] < cache.budgets[b.first]; });
+  std::size_t samples = 0, kept = 0;
+  for (const auto& m : measures)
+  {
+    samples += partSamples(qt, out.blocks[m.first], cache.configs[m.first].level, m.second);
+    if (samples <= cache.measureLimit || kept == 0) // at least one: a limit below a block's parts still moves
+    {
+      measures[kept++] = m;
+      continue;
+    }
+    MorphBlockState& state = cache.slots[cache.drawnSlots[m.first]];
+    if (m.second & ~state.errors.bounded)
+    {
+      cache.deferred[m.first] = kMorphHeld;
+      state.key.fill(-2);
+      state.errors.bounded = 0;
+    }
+    else
+    {
+      cache.deferred[m.first] = kMorphBounded;
+    }
+  }
+  measures.resize(kept);
+}
 } // namespace
 
 void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFrame& out, MorphCache& cache,
@@ -38,6 +104,7 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
   const std::vector<int>& drawn = out.blocks;
   std::vector<std::pair<std::size_t, unsigned>>& measures = cache.measures;
   measures.clear();
+  cache.deferred.assign(drawn.size(), kMorphMeasured);
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     const int b = drawn[k];
@@ -69,16 +136,24 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
     // Bounds kept from a frame with a larger budget may no longer prove their part.
     const double budget = cache.budgets[k];
     parts |= boundedPartsOver(state.errors, budget);
+    state.errors.bounded &= ~parts; // bounded again below or measured
     if (parts && table)
     {
       parts &= ~tablePartBounds(hf, *table, qt, b, cfg, out.blockTarget[b], edgeTargetsOf(cache.edges[k]), parts,
-        budget, state.errors, cache.scratch);
+        budget, state.errors, cache.scratch, &cache.polylines);
     }
     if (parts)
     {
-      state.errors.bounded &= ~parts; // measured below: exact
       measures.emplace_back(k, parts);
     }
+  }
+  if (cache.measureLimit > 0 && !cache.firstFrame)
+  {
+    deferPastLimit(qt, out, cache);
+  }
+  for (const auto& m : measures)
+  {
+    cache.slots[cache.drawnSlots[m.first]].errors.bounded &= ~m.second; // measured below: exact
   }
 
   // Each measure writes its own slot's errors and reads only the frame: independent.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gmm
 {
@@ -28,21 +29,65 @@ bool nestsInTarget(const Quadtree& qt, int block, int m, int target)
   return target == m + 1 && powerOfTwo(w) && powerOfTwo(h) && (qt.blockIsRingAt(block, target) || w == h);
 }
 
-// The largest distance of the samples along `side` of ring `block` at `config` from the
-// side's polyline at `level`: how far an edge vertex moves toward that polyline, at most.
-// The polyline is the strip's edge line toward an edge at that level (sidePolylines).
-double sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, BlockConfig config, int side,
-  int level, EmitScratch& scratch)
-{
-  config.edgeLevel[side] = level;
-  sidePolylines(qt, block, config, side, scratch);
-  return polylineError(hf, scratch.outer);
-}
 } // namespace
+
+float sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
+  EmitScratch& scratch)
+{
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const bool rows = side == South || side == North;
+  const int line = side == South ? j0 : side == North ? j1 : side == West ? i0 : i1;
+  std::vector<int>& along = scratch.edge;
+  std::vector<GridPoint>& points = scratch.outer;
+  if (rows)
+  {
+    edgeSamples(i0, i1, level, along);
+  }
+  else
+  {
+    edgeSamples(j0, j1, level, along);
+  }
+  points.clear();
+  for (int x : along)
+  {
+    points.push_back(rows ? GridPoint{ x, line } : GridPoint{ line, x });
+  }
+  return polylineError(hf, points);
+}
+
+float SidePolylineMemo::at(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
+  EmitScratch& scratch)
+{
+  const int perSide = qt.blockTopLevels[block] + 1;
+  if (level < 0 || level >= perSide)
+  {
+    return sidePolylineError(hf, qt, block, side, level, scratch);
+  }
+  if (this->first[block] < 0)
+  {
+    this->first[block] = static_cast<int32_t>(this->values.size());
+    this->values.resize(this->values.size() + 4 * static_cast<std::size_t>(perSide),
+      std::numeric_limits<float>::quiet_NaN());
+  }
+  const std::size_t at = static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(side * perSide + level);
+  float& v = this->values[at];
+  if (std::isnan(v))
+  {
+    v = sidePolylineError(hf, qt, block, side, level, scratch);
+  }
+  return v;
+}
+
+void SidePolylineMemo::reset(int blocks)
+{
+  this->first.assign(static_cast<std::size_t>(blocks), -1);
+  this->values.clear();
+}
 
 unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
-  PartErrors& errors, MorphPartScratch& scratch)
+  PartErrors& errors, MorphPartScratch& scratch, SidePolylineMemo* polylines)
 {
   const int m = config.level;
   if (target <= m || target >= table.levels || qt.blockHasNodata[block])
@@ -66,13 +111,14 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
   // the target's surface, within `ring` (not own + ring).
   const bool nests = nestsInTarget(qt, block, m, target);
   const double innerAtTarget = nests ? ring : own + ring;
-  unsigned fit = 0;
-  if ((parts & 1u) && std::max(own, innerAtTarget) <= budget)
+  unsigned bounded = 0, fit = 0;
+  if (parts & 1u)
   {
     errors.inner[0] = own;
     errors.inner[1] = innerAtTarget;
     errors.innerFrozen = false;
-    fit |= 1u;
+    bounded |= 1u;
+    fit |= std::max(own, innerAtTarget) <= budget ? 1u : 0u;
   }
   for (int side = 0; side < 4; ++side)
   {
@@ -99,7 +145,8 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
       // (edge vertices onto the side's polyline at `target`) it is the target's surface,
       // within `ring`; moving only the ring vertices leaves it that surface less the edge
       // vertices' moves, each at most p, the polyline's distance from the side's samples.
-      const double p = sidePolylineError(hf, qt, block, config, side, target, scratch.emit);
+      const double p = polylines ? polylines->at(hf, qt, block, side, target, scratch.emit)
+                                 : sidePolylineError(hf, qt, block, side, target, scratch.emit);
       const double ringOnly = std::min(drawn + ring, ring + p);
       if (edgeTarget[side] == target)
       {
@@ -113,16 +160,12 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
         corners[1] = corners[3] = ringOnly;
       }
     }
-    if (std::max({ corners[0], corners[1], corners[2], corners[3] }) > budget)
-    {
-      continue;
-    }
-    double* e = errors.side[side];
-    std::copy(corners, corners + 4, e);
+    std::copy(corners, corners + 4, errors.side[side]);
     errors.sideFrozen[side] = false;
-    fit |= bit;
+    bounded |= bit;
+    fit |= std::max({ corners[0], corners[1], corners[2], corners[3] }) <= budget ? bit : 0u;
   }
-  errors.bounded |= fit;
+  errors.bounded |= bounded;
   return fit;
 }
 

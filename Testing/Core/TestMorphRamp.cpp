@@ -704,6 +704,98 @@ TEST(MorphRamp, TableBoundsGiveTheMeasuredFactors)
     checkedCorners);
 }
 
+TEST(MorphRamp, MeasuresPastTheLimitWaitCertified)
+{
+  // Past MorphCache::measureLimit a frame bounds the remaining parts from the error table
+  // and measures them in later frames. Along a flight that jumps (every block changes its
+  // key), then holds still: every frame's morphed surface, measured sample by sample
+  // against the full-resolution heights (not the engine's bounds), is within tau and
+  // covers every in-view sample; the first frame measures everything (the same factors
+  // as without a limit); parts really wait; and once the camera has held still, the
+  // factors are those of measuring everything.
+  // With voids: the blocks beside them have sides at full resolution, which the table does
+  // not bound, so they wait without morphing (kMorphHeld).
+  gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 257, 30.0, 7, 900.0, 1);
+  for (int j = 0; j < 257; ++j)
+    for (int i = 0; i < 257; ++i)
+      if ((i / 40 + j / 40) % 3 == 0 && i % 40 < 6 && j % 40 < 6)
+        hf.z[hf.index(i, j)] = std::numeric_limits<float>::quiet_NaN();
+  gmm::Engine e;
+  ASSERT_EQ(e.setHeightfield(hf, 16, 1), "");
+  e.setMorphRange(gmm::kDefaultMorphRange);
+  gmm::MorphCache limitedCache, fullCache;
+  limitedCache.measureLimit = 1200; // about four 16 x 16 inner grids a frame
+  gmm::MorphFrame limited, full;
+  // Low over the terrain (whose heights are within 900 m), jumping every 6th frame to
+  // another place and heading, 30 m a frame between jumps.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double ext = 256 * 30.0;
+  double x = 0.0, y = 0.0, heading = 0.0;
+  constexpr int kFlightFrames = 36, kHeldFrames = 100;
+  constexpr double tau = 1.0;
+  gmm::View v;
+  v.up = { 0, 0, 1 };
+  v.fovYDegrees = 50.0;
+  v.nearDistance = 1.0;
+  v.farDistance = 4.0 * ext;
+  long deferred = 0, held = 0, checked = 0;
+  for (int f = 0; f < kFlightFrames + kHeldFrames; ++f)
+  {
+    if (f < kFlightFrames && f % 6 == 0)
+    {
+      x = (0.2 + 0.6 * u(rng)) * ext;
+      y = (0.2 + 0.6 * u(rng)) * ext;
+      heading = 6.283 * u(rng);
+    }
+    if (f < kFlightFrames)
+    {
+      x += 30.0 * std::cos(heading);
+      y += 30.0 * std::sin(heading);
+      v.eye = { x, y, 1000.0 };
+      v.forward = { std::cos(heading) * 0.95, std::sin(heading) * 0.95, -0.31 };
+    }
+    e.update(v, tau);
+    ASSERT_EQ(e.lastError(), "");
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, limitedCache, limited,
+      e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
+    gmm::computeMorph(e.heightfield(), e.quadtree(), e.levels(), e.pixelFactors(), tau, fullCache, full,
+      e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
+    for (std::size_t k = 0; k < limitedCache.deferred.size(); ++k)
+    {
+      const uint8_t d = limitedCache.deferred[k];
+      deferred += d != gmm::kMorphMeasured;
+      held += d == gmm::kMorphHeld;
+      // A block whose errors are not this key's must not move.
+      ASSERT_TRUE(d != gmm::kMorphHeld || limited.blockT[limited.blocks[k]] == 0.0f) << "frame " << f;
+    }
+    if (f == 0)
+    {
+      ASSERT_EQ(limited.blockT, full.blockT) << "the first frame must measure everything";
+    }
+    const std::vector<double> z = morphedHeights(e, limited);
+    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, tau, MeasureTransform(), z.data());
+    checked += m.inFrustum;
+    ASSERT_EQ(m.violations, 0u) << "frame " << f << ": " << m.first;
+    ASSERT_EQ(m.uncovered, 0u) << "frame " << f << ": " << m.first;
+    ASSERT_LE(limited.maxBoundPixels, tau * (1.0 + 1e-9)) << "frame " << f;
+  }
+  EXPECT_GT(deferred, 100) << "the limit deferred too few blocks to test anything";
+  EXPECT_GT(held, 10) << "too few blocks waited without morphing to test them";
+  EXPECT_GT(checked, 100000);
+  ASSERT_EQ(limited.blockT, full.blockT) << "still deferred after " << kHeldFrames << " frames held";
+  for (std::size_t k = 0; k < full.vEdges.size(); ++k)
+  {
+    ASSERT_EQ(limited.vEdges[k].t, full.vEdges[k].t) << "edge " << k;
+  }
+  for (std::size_t k = 0; k < full.hEdges.size(); ++k)
+  {
+    ASSERT_EQ(limited.hEdges[k].t, full.hEdges[k].t) << "edge " << k;
+  }
+  std::printf("%ld block-frames deferred (%ld held still); %ld in-view samples measured\n", deferred, held,
+    checked);
+}
+
 TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
 {
   // computeMorph keeps each drawn block's part errors for its key and for the key before
