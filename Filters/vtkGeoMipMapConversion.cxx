@@ -236,15 +236,15 @@ bool AcceptBlockSize(vtkObject* self, int quads, int& current)
 }
 
 //------------------------------------------------------------------------------
-bool AcceptTriangleBudget(vtkObject* self, long long budget, std::size_t& current)
+bool AcceptCount(vtkObject* self, const char* name, const char* zeroMeans, long long count, std::size_t& current)
 {
-  if (budget < 0)
+  if (count < 0)
   {
     vtkErrorWithObjectMacro(
-      self, "TriangleBudget " << budget << " must be >= 0 (0: no budget); kept " << current);
+      self, "" << name << " " << count << " must be >= 0 (0: " << zeroMeans << "); kept " << current);
     return false;
   }
-  return AcceptSetting(static_cast<std::size_t>(budget), current);
+  return AcceptSetting(static_cast<std::size_t>(count), current);
 }
 
 void PrintFrameSettings(std::ostream& os, vtkIndent indent, const gmm::FrameSettings& settings)
@@ -255,6 +255,7 @@ void PrintFrameSettings(std::ostream& os, vtkIndent indent, const gmm::FrameSett
   os << indent << "Geomorphing: " << settings.geomorphing << "\n";
   os << indent << "GeomorphRange: " << settings.geomorphRange << "\n";
   os << indent << "GeomorphMerges: " << settings.geomorphMerges << "\n";
+  os << indent << "GeomorphMeasureSamples: " << settings.geomorphMeasureSamples << "\n";
 }
 
 bool AcceptHeightScale(vtkObject* self, double scale, double& current)

@@ -88,10 +88,12 @@ GEOMIPMAPFILTERS_EXPORT bool AcceptBlockSize(vtkObject* self, int quads, int& cu
 GEOMIPMAPFILTERS_EXPORT bool AcceptHeightScale(vtkObject* self, double scale, double& current);
 
 /**
- * The SetTriangleBudget rule of the mapper and the filter: a budget >= 0 (0: none) is stored
- * in `current` and true returned when it differs; a negative one is refused with an error.
+ * The rule of a count setting of the mapper and the filter (TriangleBudget,
+ * GeomorphMeasureSamples; `name` in the error): a count >= 0 (0: `zeroMeans`) is stored in
+ * `current` and true returned when it differs; a negative one is refused with an error.
  */
-GEOMIPMAPFILTERS_EXPORT bool AcceptTriangleBudget(vtkObject* self, long long budget, std::size_t& current);
+GEOMIPMAPFILTERS_EXPORT bool AcceptCount(
+  vtkObject* self, const char* name, const char* zeroMeans, long long count, std::size_t& current);
 
 /**
  * A setting without a rule of its own (any value is meaningful): stored in `current`, true
@@ -127,7 +129,8 @@ GEOMIPMAPFILTERS_EXPORT void SampleNormal(
 
 /**
  * Defines the Set/Get methods of the LOD settings the mapper and the filter share
- * (PixelError, TriangleBudget, HeightScale, Geomorphing, GeomorphRange, GeomorphMerges) for
+ * (PixelError, TriangleBudget, HeightScale, Geomorphing, GeomorphRange, GeomorphMerges,
+ * GeomorphMeasureSamples) for
  * `Class`, whose internals hold them as `Internal->Settings` (a gmm::FrameSettings): each
  * setter applies its rule above and calls `this->Modify()` when the value changed.
  */
@@ -140,8 +143,8 @@ GEOMIPMAPFILTERS_EXPORT void SampleNormal(
   double Class::GetPixelError() { return this->Internal->Settings.pixelError; }                \
   void Class::SetTriangleBudget(vtkIdType budget)                                              \
   {                                                                                            \
-    if (vtkGeoMipMapConversion::AcceptTriangleBudget(                                          \
-          this, budget, this->Internal->Settings.triangleBudget))                              \
+    if (vtkGeoMipMapConversion::AcceptCount(                                                   \
+          this, "TriangleBudget", "no budget", budget, this->Internal->Settings.triangleBudget))   \
       this->Modify();                                                                          \
   }                                                                                            \
   vtkIdType Class::GetTriangleBudget()                                                         \
@@ -171,7 +174,17 @@ GEOMIPMAPFILTERS_EXPORT void SampleNormal(
     if (vtkGeoMipMapConversion::AcceptSetting(on, this->Internal->Settings.geomorphMerges))    \
       this->Modify();                                                                          \
   }                                                                                            \
-  bool Class::GetGeomorphMerges() { return this->Internal->Settings.geomorphMerges; }
+  bool Class::GetGeomorphMerges() { return this->Internal->Settings.geomorphMerges; }        \
+  void Class::SetGeomorphMeasureSamples(vtkIdType samples)                                     \
+  {                                                                                            \
+    if (vtkGeoMipMapConversion::AcceptCount(this, "GeomorphMeasureSamples", "no limit", samples, \
+          this->Internal->Settings.geomorphMeasureSamples))                                    \
+      this->Modify();                                                                          \
+  }                                                                                            \
+  vtkIdType Class::GetGeomorphMeasureSamples()                                                 \
+  {                                                                                            \
+    return static_cast<vtkIdType>(this->Internal->Settings.geomorphMeasureSamples);            \
+  }
 
 #endif
 // VTK-HeaderTest-Exclude: vtkGeoMipMapConversion.h

@@ -194,6 +194,17 @@ public:
   vtkBooleanMacro(GeomorphMerges, bool);
   ///@}
 
+  ///@{
+  /**
+   * The most full-resolution samples an Update rasterises to measure geomorphing's exact
+   * errors (as vtkGeoMipMapMapper::SetGeomorphMeasureSamples; default 65536, 0: no limit).
+   * After a jump of the camera the blocks past it morph by looser certified bounds until
+   * later Updates measure them, so the output depends on the earlier Updates' cameras.
+   */
+  void SetGeomorphMeasureSamples(vtkIdType samples);
+  vtkIdType GetGeomorphMeasureSamples();
+  ///@}
+
   /**
    * Height of the full-resolution surface at data coordinates (x, y): origin z +
    * HeightScale * h, linear on the level-0 triangle under it (the triangulation the mesh
@@ -215,8 +226,8 @@ protected:
   vtkMatrix4x4* ModelMatrix = nullptr;
   int ViewportSize[2] = { 1280, 720 };
   // The LOD settings shared with vtkGeoMipMapMapper (PixelError, TriangleBudget,
-  // BudgetStartTau, HeightScale, Geomorphing, GeomorphRange, GeomorphMerges) are one
-  // gmm::FrameSettings in the internals.
+  // BudgetStartTau, HeightScale, Geomorphing, GeomorphRange, GeomorphMerges,
+  // GeomorphMeasureSamples) are one gmm::FrameSettings in the internals.
   int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;

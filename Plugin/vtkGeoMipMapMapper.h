@@ -342,6 +342,24 @@ public:
 
   ///@{
   /**
+   * The most full-resolution samples a frame rasterises to measure geomorphing's exact
+   * errors (default 65536; 0: no limit). A block's morph factor is chosen from the errors
+   * of its parts at its level and its configuration; when the camera jumps, nearly every
+   * drawn block changes configuration, and measuring them all was three quarters of the
+   * frame's CPU work. Past the limit the nearest blocks are measured first; the others
+   * morph by the error table's bounds (certified, looser: they morph less) or, where the
+   * table gives none, not at all, and are measured in the frames that follow, each again
+   * within the limit. PixelError holds in every frame. A smooth flight measures far less
+   * than the default a frame; the first frame measures everything. Measured with
+   * bench_core's jumps (views 30 degrees apart around a 4097^2 DEM, PixelError 1): 7.7 ms
+   * a frame against 18.6 ms with no limit (2.5 ms without geomorphing).
+   */
+  void SetGeomorphMeasureSamples(vtkIdType samples);
+  vtkIdType GetGeomorphMeasureSamples();
+  ///@}
+
+  ///@{
+  /**
    * Triangle budget of every frame (0, the default: none). The engine refines the drawn
    * block with the largest projected error until the next refinement would exceed the
    * budget or every error is within PixelError, whichever comes first
@@ -568,8 +586,8 @@ protected:
   void DrawTriangles(unsigned int mode, std::size_t indexCount);
 
   // The LOD settings shared with vtkGeoMipMapFilter (PixelError, TriangleBudget,
-  // HeightScale, Geomorphing, GeomorphRange, GeomorphMerges) are one gmm::FrameSettings in
-  // the internals.
+  // HeightScale, Geomorphing, GeomorphRange, GeomorphMerges, GeomorphMeasureSamples) are one
+  // gmm::FrameSettings in the internals.
   int BlockSize; // gmm::kDefaultBlockQuads
   bool TableCache = true;
   char* TableCacheDirectory = nullptr;
