@@ -13,6 +13,7 @@
 // (runBudgetFlight below), the first kBudgetFlightFrames frames of the flight.
 // BM_BlockSizeSweep4097 / BM_BlockSizeSweepMapperDefault4097: the whole-DEM flight at 4097^2
 // for leaf sizes 16 .. 256, engine default and mapper default.
+// BM_LodJumpsMapperDefault: the mapper default's frame when the camera jumps (runJumps).
 // BM_LodFlightMapperDefault: the whole-DEM flight with the CPU work the mapper does per frame
 // by default: Engine::update on geomorphing's level path (kDefaultMorphRange) and
 // computeMorph over the drawn blocks (the mapper draws the index arena: no concatenation);
@@ -38,10 +39,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -248,6 +251,76 @@ void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::siz
   state.counters["certified_px_mean"] = errorSum / n;
 }
 
+// BM_LodJumpsMapperDefault: the mapper default's frame when the camera jumps: twelve views
+// 30 degrees apart on an orbit around the DEM's centre (radius 35 % of its side, the eye 4 %
+// of the side above its highest sample, looking 20 degrees inward of the tangent and 15
+// degrees down, as geomipmap-bench's orbit at 12 frames), one view a frame, so that nearly
+// every drawn block changes its configuration every frame. Each iteration draws the view
+// with three frame drivers, each timed alone: the mapper default (measuring at most
+// gmm::kDefaultMorphMeasureSamples a frame, Morph.h), the same measuring every part, and
+// without geomorphing. Counters: jump_us (the default), measure_all_us and
+// no_geomorph_us, and the ratios measure_all_x = measure_all_us / jump_us and
+// geomorph_x = jump_us / no_geomorph_us, all from the same run.
+gmm::View orbitView(const gmm::Heightfield& hf, int k)
+{
+  const double ext = std::min((hf.nx - 1) * hf.dx, (hf.ny - 1) * hf.dy);
+  const double cx = hf.x0 + 0.5 * (hf.nx - 1) * hf.dx, cy = hf.y0 + 0.5 * (hf.ny - 1) * hf.dy;
+  float top = -std::numeric_limits<float>::infinity();
+  for (float z : hf.z)
+    top = std::isfinite(z) ? std::max(top, z) : top;
+  const double pi = 3.14159265358979323846;
+  const double a = k * pi / 6.0, heading = a + pi / 2.0 + 20.0 * pi / 180.0, pitch = -15.0 * pi / 180.0;
+  gmm::View v;
+  v.eye = { cx + 0.35 * ext * std::cos(a), cy + 0.35 * ext * std::sin(a), top + 0.04 * ext };
+  v.forward = { std::cos(heading) * std::cos(pitch), std::sin(heading) * std::cos(pitch), std::sin(pitch) };
+  v.up = { 0, 0, 1 };
+  v.fovYDegrees = 60;
+  v.viewportWidth = 1280;
+  v.viewportHeight = 720;
+  v.nearDistance = 1.0;
+  v.farDistance = 1e7;
+  return v;
+}
+
+void runJumps(benchmark::State& state, int size, int blockQuads)
+{
+  Scene& s = scene(size, blockQuads);
+  std::vector<gmm::View> views;
+  for (int k = 0; k < 12; ++k)
+    views.push_back(orbitView(s.engine->heightfield(), k));
+  gmm::FrameSettings byDefault, measureAll, noGeomorph;
+  measureAll.geomorphMeasureSamples = 0;
+  noGeomorph.geomorphing = false;
+  const gmm::FrameSettings* settings[3] = { &byDefault, &measureAll, &noGeomorph };
+  gmm::FrameDriver drivers[3];
+  double us[3] = { 0, 0, 0 }, triangles = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    drivers[d].setTerrain(s.engine->terrain());
+    drivers[d].update(views[0], *settings[d]); // the first frame measures everything
+  }
+  std::size_t frame = 1;
+  for (auto _ : state)
+  {
+    const gmm::View& v = views[frame % views.size()];
+    for (int d = 0; d < 3; ++d)
+    {
+      const auto t0 = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(drivers[d].update(v, *settings[d]).stats.triangles);
+      us[d] += seconds(t0) * 1e6;
+    }
+    triangles += drivers[0].frame().stats.triangles;
+    ++frame;
+  }
+  const double n = static_cast<double>(frame - 1);
+  state.counters["jump_us"] = us[0] / n;
+  state.counters["measure_all_us"] = us[1] / n;
+  state.counters["no_geomorph_us"] = us[2] / n;
+  state.counters["measure_all_x"] = us[1] / us[0];
+  state.counters["geomorph_x"] = us[0] / us[2];
+  state.counters["triangles"] = triangles / n;
+}
+
 void BM_FullResolutionIndices(benchmark::State& state, int blockQuads)
 {
   const int size = static_cast<int>(state.range(0));
@@ -294,6 +367,11 @@ int main(int argc, char** argv)
       ->Unit(benchmark::kMicrosecond)
       ->UseRealTime()
       ->MinTime(2.0);
+    benchmark::RegisterBenchmark(("BM_LodJumpsMapperDefault/" + std::to_string(s)).c_str(),
+      [s, block](benchmark::State& st) { runJumps(st, s, block); })
+      ->Unit(benchmark::kMicrosecond)
+      ->UseRealTime()
+      ->Iterations(48); // four times round the orbit
     for (bool varying : { false, true })
       benchmark::RegisterBenchmark(
         ((varying ? "BM_BudgetFlightVarying/" : "BM_BudgetFlight/") + std::to_string(s)).c_str(),
