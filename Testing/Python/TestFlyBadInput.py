@@ -6,7 +6,9 @@ multi-line error dumps. Malformed waypoint files (issue #16 item 6) must also ex
 ("bad input", not 1 "internal error") with a line naming the file and the problem: the
 CSV line or the JSON waypoint number where it is. Every malformed waypoint file of
 waypointcases.py is checked in-process by TestFlyWaypointFiles; the few here go through the
-command (those that used to end in an internal error).
+command (those that used to end in an internal error). Last, a DEM the default path cannot
+see (an image without georeference, read with the default spacing and height scale) flies
+without error but must be told why nothing was drawn.
 """
 
 import os
@@ -118,5 +120,18 @@ for name, args in cases.items():
     if not ok:
         failures.append(name)
 check(not failures, f"{len(failures)} case(s) failed: {', '.join(failures)}")
+
+# A flight that sees nothing is not an error, but must say why: a 16-bit PNG read with the
+# default spacing (1 m) and height scale (1) is 64 m wide and 60 km high, so the path flies
+# far above it. With its spacing and height scale it is drawn, and nothing is said.
+tall = demfiles.png16(os.path.join(out, "tall.png"),
+                      (np.random.default_rng(3).random((65, 65)) * 60000).astype(np.uint16))
+warned = ["--dem", tall, "--frames", "2", "--size", "64x64", "--no-frames", "--out", os.path.join(out, "w")]
+rc, so, se = run(exe, *warned, timeout=120)
+check(rc == 0 and "no frame drew any terrain" in se and "--spacing" in se and "--height-scale" in se,
+      f"a flight that draws nothing warns with the options to set (rc {rc}): {se.strip()[:300]!r}")
+rc, so, se = run(exe, *warned, "--spacing", "100", "--height-scale", "0.01", timeout=120)
+check(rc == 0 and "no frame drew any terrain" not in se,
+      f"the same DEM with its spacing and height scale draws without the warning (rc {rc}): {se.strip()[:300]!r}")
 check(not os.path.exists(os.path.join(out, "o")), "a failed run created its output folder")
 print(f"TestFlyBadInput: passed ({len(cases)} cases)")

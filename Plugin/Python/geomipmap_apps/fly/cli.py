@@ -105,6 +105,17 @@ def check(args):
     command.check_common(args)
 
 
+def nothing_drawn(heights):
+    """Why a flight may have drawn no terrain at all, with the DEM's extent and heights: the
+    usual cause is an image without georeference read with the default spacing (1 m) and
+    height scale (1), whose heights then dwarf its extent and put the path far above it."""
+    xmin, xmax, ymin, ymax = heights.bounds
+    return (f"no frame drew any terrain: the DEM spans {xmax - xmin:g} x {ymax - ymin:g} m with "
+            f"heights {heights.zmin:g} .. {heights.zmax:g} m, and the camera path did not see it. "
+            "For an image without georeference, give its sample spacing (--spacing, metres) and "
+            "the metres per stored height unit (--height-scale).")
+
+
 def fly(args):
     """Everything after option parsing; returns the summary text."""
     from geomipmap import flight
@@ -168,6 +179,8 @@ def fly(args):
         movie.close()
     for line in messages.warnings:  # e.g. a DEM without georeference, a photo without CRS
         print(f"{PROG}: warning: {line}", file=sys.stderr)
+    if log.rows and not any(r["triangles"] for r in log.rows):
+        print(f"{PROG}: warning: {nothing_drawn(heights)}", file=sys.stderr)
     where = [f"CSV: {os.path.abspath(csv_name)}"]
     where.append(f"frames: {written} PNG in {os.path.abspath(args.out)}" if written
                  else "frames: none written (--no-frames)")
