@@ -101,6 +101,28 @@ print(f"513^2, tau 1, 3 frames: ours draws {range_tri[None]} triangles at the de
 if not 0 < range_tri[None] < range_tri[3]:
     failures.append(f"--geomorph-range 3: {range_tri[3]} triangles over the flight, not more "
                     f"than the default's {range_tri[None]}")
+# --geomorph-measure-samples reaches them too: at 1 sample a frame nearly every part after
+# the first frame waits for later frames, which changes no triangle (the selection does not
+# depend on it), and ours still measures within tau (vtkGeoMipMapScreenError); -1 is bad input.
+folder = os.path.join(scratch, "measure1")
+q = subprocess.run([exe, "--synthetic", "513", "--data-dir", "", "--methods", "ours", "--tau", "1",
+                    "--frames", "3", "--size", "320x180", "--out", folder, "--geomorph-measure-samples", "1"],
+                   capture_output=True, text=True, timeout=240)
+if q.returncode != 0:
+    sys.exit(f"FAIL: --geomorph-measure-samples 1: exit {q.returncode}\n{q.stderr}")
+with open(os.path.join(folder, "frames.csv"), newline="") as f:
+    ours = [row for row in csv.DictReader(f) if row["method"] == "ours"]
+with open(os.path.join(folder, "summary.md")) as f:
+    if "GeomorphMeasureSamples 1\n" not in f.read():
+        failures.append("--geomorph-measure-samples 1: the mapper's limit is not 1")
+if sum(int(row["triangles"]) for row in ours) != range_tri[None]:
+    failures.append("--geomorph-measure-samples 1 changed the triangles")
+if not max(float(row["err_max_px"]) for row in ours) <= 1.0:
+    failures.append("--geomorph-measure-samples 1: ours measures above tau 1")
+bad = subprocess.run([exe, "--geomorph-measure-samples", "-1", "--out", os.path.join(scratch, "bad")],
+                     capture_output=True, text=True, timeout=60)
+if bad.returncode != 2 or "--geomorph-measure-samples" not in bad.stderr or "Traceback" in bad.stderr:
+    failures.append(f"--geomorph-measure-samples -1: exit {bad.returncode}, stderr {bad.stderr!r}")
 bad = subprocess.run([exe, "--geomorph-range", "0", "--out", os.path.join(scratch, "bad")],
                      capture_output=True, text=True, timeout=60)
 if bad.returncode != 2 or "--geomorph-range" not in bad.stderr or "Traceback" in bad.stderr:

@@ -64,6 +64,11 @@ def build_parser():
                         f"frames (default: the mapper's, {command.default_geomorph_range():g}): "
                         "what geomorphing's level path costs against how gradually it changes "
                         "levels")
+    p.add_argument("--geomorph-measure-samples", type=command.positive(int, 0, strict=False), default=None,
+                   metavar="N",
+                   help="GeomorphMeasureSamples of ours' mapper and its filters (default: the "
+                        "mapper's; 0: no limit): the exact errors geomorphing measures a frame "
+                        "when the camera jumps, the rest waiting for later frames")
     command.add_block_size_option(p)
     p.add_argument("--path", choices=("orbit", "line"), default="orbit")
     p.add_argument("--size", type=command.window_size, default=(1280, 720),

@@ -90,7 +90,12 @@ def run_dem(label, path, n, args, methods, budget_gb, out):
         scene.mapper.SetGeomorphRange(args.geomorph_range)
         for f in bench.filters.values():
             f.SetGeomorphRange(args.geomorph_range)
-    out.note(label, f"GeomorphRange {scene.mapper.GetGeomorphRange():g}")
+    if args.geomorph_measure_samples is not None:
+        scene.mapper.SetGeomorphMeasureSamples(args.geomorph_measure_samples)
+        for f in bench.filters.values():
+            f.SetGeomorphMeasureSamples(args.geomorph_measure_samples)
+    out.note(label, f"GeomorphRange {scene.mapper.GetGeomorphRange():g}, "
+             f"GeomorphMeasureSamples {scene.mapper.GetGeomorphMeasureSamples()}")
     configs = _build(label, args, methods, over, budget_gb, bench, heights, image, skip, out)
     _fly(label, args, configs, bench, heights, out)
     out.note(label, f"peak RSS {_rss_gb():.1f} GB")
