@@ -710,9 +710,11 @@ TEST(MorphRamp, MeasuresPastTheLimitWaitCertified)
   // and measures them in later frames. Along a flight that jumps (every block changes its
   // key), then holds still: every frame's morphed surface, measured sample by sample
   // against the full-resolution heights (not the engine's bounds), is within tau and
-  // covers every in-view sample; the first frame measures everything (the same factors
-  // as without a limit); parts really wait; and once the camera has held still, the
-  // factors are those of measuring everything.
+  // covers every in-view sample; every waiting part's bounds are at least its corners
+  // measured on the rasterised surface (morphPartErrors); waiting blocks without bounds do
+  // not move; the first frame measures everything (the same factors as without a limit);
+  // parts really wait; and once the camera has held still, the factors are those of
+  // measuring everything.
   // With voids: the blocks beside them have sides at full resolution, which the table does
   // not bound, so they wait without morphing (kMorphHeld).
   gmm::Heightfield hf = gmm::makeSyntheticTerrain(257, 257, 30.0, 7, 900.0, 1);
@@ -739,7 +741,8 @@ TEST(MorphRamp, MeasuresPastTheLimitWaitCertified)
   v.fovYDegrees = 50.0;
   v.nearDistance = 1.0;
   v.farDistance = 4.0 * ext;
-  long deferred = 0, held = 0, checked = 0;
+  long deferred = 0, held = 0, checked = 0, boundsChecked = 0;
+  gmm::MorphPartScratch scratch;
   for (int f = 0; f < kFlightFrames + kHeldFrames; ++f)
   {
     if (f < kFlightFrames && f % 6 == 0)
@@ -768,6 +771,28 @@ TEST(MorphRamp, MeasuresPastTheLimitWaitCertified)
       held += d == gmm::kMorphHeld;
       // A block whose errors are not this key's must not move.
       ASSERT_TRUE(d != gmm::kMorphHeld || limited.blockT[limited.blocks[k]] == 0.0f) << "frame " << f;
+      if (d != gmm::kMorphBounded)
+      {
+        continue;
+      }
+      // A waiting block's factors come from the table's bounds: each must be at least the
+      // corner measured on the rasterised surface (morphPartErrors).
+      const int b = limited.blocks[k];
+      const gmm::PartErrors& kept = limitedCache.slots[limitedCache.drawnSlots[k]].errors;
+      const std::array<gmm::MorphEdge*, 4>& edges = limitedCache.edges[k];
+      const gmm::PartErrors exact = gmm::morphPartErrors(e.heightfield(), e.quadtree(), b, limitedCache.configs[k],
+        limited.blockTarget[b], { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, scratch);
+      for (int c = 0; c < 2 && (kept.bounded & 1u); ++c)
+      {
+        ASSERT_GE(kept.inner[c], exact.inner[c] - 1e-9) << "frame " << f << " block " << b;
+      }
+      for (int side = 0; side < 4; ++side)
+      {
+        for (int c = 0; c < 4 && (kept.bounded & (2u << side)); ++c, ++boundsChecked)
+        {
+          ASSERT_GE(kept.side[side][c], exact.side[side][c] - 1e-9) << "frame " << f << " block " << b;
+        }
+      }
     }
     if (f == 0)
     {
@@ -782,6 +807,7 @@ TEST(MorphRamp, MeasuresPastTheLimitWaitCertified)
   }
   EXPECT_GT(deferred, 100) << "the limit deferred too few blocks to test anything";
   EXPECT_GT(held, 10) << "too few blocks waited without morphing to test them";
+  EXPECT_GT(boundsChecked, 1000) << "too few waiting strips' bounds checked against measured ones";
   EXPECT_GT(checked, 100000);
   ASSERT_EQ(limited.blockT, full.blockT) << "still deferred after " << kHeldFrames << " frames held";
   for (std::size_t k = 0; k < full.vEdges.size(); ++k)
@@ -792,8 +818,8 @@ TEST(MorphRamp, MeasuresPastTheLimitWaitCertified)
   {
     ASSERT_EQ(limited.hEdges[k].t, full.hEdges[k].t) << "edge " << k;
   }
-  std::printf("%ld block-frames deferred (%ld held still); %ld in-view samples measured\n", deferred, held,
-    checked);
+  std::printf("%ld block-frames deferred (%ld held still, %ld strip corners checked); %ld in-view samples measured\n",
+    deferred, held, boundsChecked, checked);
 }
 
 TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
