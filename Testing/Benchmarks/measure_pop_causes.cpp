@@ -18,11 +18,12 @@
 // same here (the screen measure is Testing/Core's, independent of the engine's bound).
 //
 //   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--step 0.04]
-//                      [--frames 120] [--threshold 0.3] [--no-merges]
+//                      [--frames 120] [--threshold 0.3] [--no-merges] [--measure-samples N]
 //
 // --range 0 turns geomorphing off (levels switch at once); --no-merges lets merges skip the
-// path's levels (the mapper's SetGeomorphMerges off; on by default, as in the mapper). A
-// measurement, not a test.
+// path's levels (the mapper's SetGeomorphMerges off; on by default, as in the mapper);
+// --measure-samples sets the mapper's SetGeomorphMeasureSamples (default the mapper's; 0:
+// no limit). A measurement, not a test.
 #include "Engine.h"
 #include "Frame.h"
 #include "Morph.h"
@@ -101,7 +102,10 @@ int main(int argc, char** argv)
   const int frames = static_cast<int>(argOr(argc, argv, "--frames", 120));
   const double threshold = argOr(argc, argv, "--threshold", 0.3);
   const bool merges = gmm::FrameSettings().geomorphMerges && !flag(argc, argv, "--no-merges");
-  if (!(tau >= 0.0) || block < 4 || n < 3 || frames < 2 || !(threshold > 0.0))
+  const double measureSamples =
+    argOr(argc, argv, "--measure-samples", static_cast<double>(gmm::FrameSettings().geomorphMeasureSamples));
+  if (!(tau >= 0.0) || block < 4 || n < 3 || frames < 2 || !(threshold > 0.0) || !(measureSamples >= 0.0) ||
+    !(measureSamples < 1e15))
   {
     std::fprintf(stderr, "measure_pop_causes: bad arguments (see the file's header)\n");
     return 2;
@@ -121,6 +125,7 @@ int main(int argc, char** argv)
   const double top = *std::max_element(hf.z.begin(), hf.z.end());
 
   gmm::MorphCache cache;
+  cache.measureLimit = static_cast<std::size_t>(measureSamples);
   std::vector<double> previousZ;
   std::vector<int8_t> previousLevels;
   CauseTally tally[CauseCount];
