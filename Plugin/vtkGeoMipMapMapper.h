@@ -350,7 +350,9 @@ public:
    * morph by the error table's bounds (certified, looser: they morph less) or, where the
    * table gives none, not at all, and are measured in the frames that follow, each again
    * within the limit. PixelError holds in every frame. A smooth flight measures far less
-   * than the default a frame; the first frame measures everything. Measured with
+   * than the default a frame (over a 30 m fractal at PixelError 2, pops change only at 480 m
+   * a frame: the mean of the frames' worst 0.73 -> 0.81 px); the first frame measures
+   * everything. Measured with
    * bench_core's jumps (views 30 degrees apart around a 4097^2 DEM, PixelError 1): 7.7 ms
    * a frame against 18.6 ms with no limit (2.5 ms without geomorphing).
    */
