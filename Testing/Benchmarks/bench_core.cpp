@@ -252,42 +252,18 @@ void runBudgetFlight(benchmark::State& state, int size, int blockQuads, std::siz
 }
 
 // BM_LodJumpsMapperDefault: the mapper default's frame when the camera jumps: twelve views
-// 30 degrees apart on an orbit around the DEM's centre (radius 35 % of its side, the eye 4 %
-// of the side above its highest sample, looking 20 degrees inward of the tangent and 15
-// degrees down, as geomipmap-bench's orbit at 12 frames), one view a frame, so that nearly
-// every drawn block changes its configuration every frame. Each iteration draws the view
-// with three frame drivers, each timed alone: the mapper default (measuring at most
+// 30 degrees apart on an orbit around the DEM (gmmbench::makeOrbitJumps, as geomipmap-bench's
+// orbit at 12 frames), one view a frame, so that nearly every drawn block changes its
+// configuration every frame. Each iteration draws the view with three frame drivers, each
+// timed alone: the mapper default (measuring at most
 // gmm::kDefaultMorphMeasureSamples a frame, Morph.h), the same measuring every part, and
 // without geomorphing. Counters: jump_us (the default), measure_all_us and
 // no_geomorph_us, and the ratios measure_all_x = measure_all_us / jump_us and
 // geomorph_x = jump_us / no_geomorph_us, all from the same run.
-gmm::View orbitView(const gmm::Heightfield& hf, int k)
-{
-  const double ext = std::min((hf.nx - 1) * hf.dx, (hf.ny - 1) * hf.dy);
-  const double cx = hf.x0 + 0.5 * (hf.nx - 1) * hf.dx, cy = hf.y0 + 0.5 * (hf.ny - 1) * hf.dy;
-  float top = -std::numeric_limits<float>::infinity();
-  for (float z : hf.z)
-    top = std::isfinite(z) ? std::max(top, z) : top;
-  const double pi = 3.14159265358979323846;
-  const double a = k * pi / 6.0, heading = a + pi / 2.0 + 20.0 * pi / 180.0, pitch = -15.0 * pi / 180.0;
-  gmm::View v;
-  v.eye = { cx + 0.35 * ext * std::cos(a), cy + 0.35 * ext * std::sin(a), top + 0.04 * ext };
-  v.forward = { std::cos(heading) * std::cos(pitch), std::sin(heading) * std::cos(pitch), std::sin(pitch) };
-  v.up = { 0, 0, 1 };
-  v.fovYDegrees = 60;
-  v.viewportWidth = 1280;
-  v.viewportHeight = 720;
-  v.nearDistance = 1.0;
-  v.farDistance = 1e7;
-  return v;
-}
-
 void runJumps(benchmark::State& state, int size, int blockQuads)
 {
   Scene& s = scene(size, blockQuads);
-  std::vector<gmm::View> views;
-  for (int k = 0; k < 12; ++k)
-    views.push_back(orbitView(s.engine->heightfield(), k));
+  const std::vector<gmm::View> views = gmmbench::makeOrbitJumps(s.engine->heightfield(), 12);
   gmm::FrameSettings byDefault, measureAll, noGeomorph;
   measureAll.geomorphMeasureSamples = 0;
   noGeomorph.geomorphing = false;
