@@ -128,9 +128,8 @@ void FrameToPolyData(const gmm::FrameDriver& driver, double heightScale, vtkPoly
   {
     const int i = static_cast<int>(used[p] % static_cast<uint32_t>(hf.nx));
     const int j = static_cast<int>(used[p] / static_cast<uint32_t>(hf.nx));
-    const double z = frame.morphed
-      ? gmm::morphedHeight(hf, engine.quadtree(), engine.levels(), driver.morph(), i, j)
-      : static_cast<double>(hf.heights()[used[p]]);
+    // Morphed or not, as the mapper draws it (glided edges' samples on their polylines).
+    const double z = gmm::morphedHeight(hf, engine.quadtree(), engine.levels(), driver.morph(), i, j);
     xyz->SetTypedTuple(
       p, std::array<double, 3>{ hf.worldX(i), hf.worldY(j), hf.z0 + heightScale * z }.data());
     elevation->SetValue(p, static_cast<float>(z));

@@ -84,7 +84,7 @@ struct vtkGeoMipMapMapper::Internals
   // GPU data, all in the context of Window.
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
   vtkGeoMipMapGPUTerrain GPU;
-  // Geomorphing: the texture of this frame's factors; Morphing while drawn so.
+  // The texture of this frame's edge levels and geomorph factors; Morphing while drawn so.
   vtkGeoMipMapMorphTexture MorphTexture;
   bool Morphing = false;
   std::string ReportedMorphError;
@@ -164,21 +164,24 @@ struct vtkGeoMipMapMapper::Internals
     this->GPU.SetTextureCoordinates(textured);
   }
 
-  // The geomorph factors' texture: the only per-frame morph data; returns the bytes uploaded.
-  // Factors that cannot be stored are not drawn (the frame's bound is then the selection's),
-  // and said once.
+  // The texture of the frame's edge levels and geomorph factors (FrameDriver::morph()), the
+  // only per-frame data the vertex shader places vertices by (glided edges' samples, and
+  // morphing); returns the bytes uploaded. A texture that cannot be made leaves every vertex
+  // at its sample's height (no geomorphing; the frame's bound is then the selection's, and
+  // glided edges are drawn through their samples), and is said once.
   vtkTypeInt64 UploadMorph(vtkObject* self, vtkOpenGLRenderWindow* win, const gmm::Frame& frame)
   {
     this->Morphing = false;
     vtkTypeInt64 bytes = 0;
-    if (frame.morphed)
+    if (frame.ok())
     {
       const std::string err = this->MorphTexture.Update(win, this->Engine().quadtree(), this->Driver.morph());
       this->Morphing = err.empty();
       bytes = static_cast<vtkTypeInt64>(this->MorphTexture.GetLastUploadBytes());
       if (!err.empty() && err != this->ReportedMorphError)
       {
-        vtkWarningWithObjectMacro(self, << err);
+        vtkWarningWithObjectMacro(self, << err << " (glided edges are drawn through their samples, which the "
+                                              "reported error does not bound)");
       }
       this->ReportedMorphError = err;
     }

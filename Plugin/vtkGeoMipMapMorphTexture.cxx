@@ -67,27 +67,33 @@ BlockTexels texelsOf(const gmm::Quadtree& qt, int b)
   return BlockTexels{ { c, c, c + 1, c, c }, { r, 2 * br + r, br + r, 2 * br + r + 1, br + r } };
 }
 
-// Writes the (target, factor) texels of block b and of its four edges from a frame into
-// `data` (width texels a row); changed(x, y) is told of each texel whose value changed.
+// Texels are (target, factor, edge level): the block's or the edge's morph target and
+// factor, and for an edge the level it is drawn at (-1 for a block, or an edge not drawn),
+// whose polyline holds a glided edge's samples (EdgeHeights.h).
+constexpr int kTexelFloats = 3;
+
+// Writes the texels of block b and of its four edges from a frame into `data` (width
+// texels a row); changed(x, y) is told of each texel whose value changed.
 template <typename Changed>
 void writeBlock(std::vector<float>& data, int width, const gmm::Quadtree& qt,
   const gmm::MorphFrame& f, int b, Changed changed)
 {
   const BlockTexels t = texelsOf(qt, b);
   const std::array<const gmm::MorphEdge*, 4> e = gmm::blockEdges(qt, f, b);
-  float v[5][2] = { { static_cast<float>(f.blockTarget[b]), f.blockTarget[b] >= 0 ? f.blockT[b] : 0.0f } };
+  float v[5][kTexelFloats] = { { static_cast<float>(f.blockTarget[b]), f.blockTarget[b] >= 0 ? f.blockT[b] : 0.0f,
+    -1.0f } };
   for (int k = 0; k < 4; ++k)
   {
     v[k + 1][0] = e[k]->target;
     v[k + 1][1] = e[k]->target >= 0 ? e[k]->t : 0.0f;
+    v[k + 1][2] = e[k]->level;
   }
   for (int k = 0; k < 5; ++k)
   {
-    float* p = &data[(static_cast<size_t>(t.y[k]) * width + t.x[k]) * 2];
-    if (p[0] != v[k][0] || p[1] != v[k][1])
+    float* p = &data[(static_cast<size_t>(t.y[k]) * width + t.x[k]) * kTexelFloats];
+    if (p[0] != v[k][0] || p[1] != v[k][1] || p[2] != v[k][2])
     {
-      p[0] = v[k][0];
-      p[1] = v[k][1];
+      std::copy(v[k], v[k] + kTexelFloats, p);
       changed(t.x[k], t.y[k]);
     }
   }
@@ -145,9 +151,9 @@ std::string vtkGeoMipMapMorphTexture::Update(
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
       active = true;
     }
-    glTexSubImage2D(GL_TEXTURE_2D, 0, lo, y, hi - lo + 1, 1, GL_RG, GL_FLOAT,
-      &this->Data[(static_cast<size_t>(y) * width + lo) * 2]);
-    this->LastUploadBytes += static_cast<size_t>(hi - lo + 1) * 2 * sizeof(float);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, lo, y, hi - lo + 1, 1, GL_RGB, GL_FLOAT,
+      &this->Data[(static_cast<size_t>(y) * width + lo) * kTexelFloats]);
+    this->LastUploadBytes += static_cast<size_t>(hi - lo + 1) * kTexelFloats * sizeof(float);
   }
   if (active)
   {
@@ -178,7 +184,9 @@ std::string vtkGeoMipMapMorphTexture::Build(
     return "geomorphing stores sample indices as floats, exact below 2^24 samples a side: drawn "
            "unmorphed";
   }
-  this->Data.assign(static_cast<size_t>(width) * height * 2, 0.0f);
+  // Blocks and edges not written by any block (none: every edge is some block's) read as
+  // not morphing and not drawn.
+  this->Data.assign(static_cast<size_t>(width) * height * kTexelFloats, 0.0f);
   // Every edge is one of some block's four: the blocks write every block and edge texel.
   for (int b = 0; b < qt.blockCount(); ++b)
   {
@@ -187,9 +195,9 @@ std::string vtkGeoMipMapMorphTexture::Build(
   this->Blocks[0] = bc;
   this->Blocks[1] = br;
   this->Texture->SetContext(win);
-  if (!this->Texture->Create2DFromRaw(width, height, 2, VTK_FLOAT, this->Data.data()))
+  if (!this->Texture->Create2DFromRaw(width, height, kTexelFloats, VTK_FLOAT, this->Data.data()))
   {
-    return "geomorphing: the RG32F texture could not be created: drawn unmorphed";
+    return "geomorphing: the RGB32F texture could not be created: drawn unmorphed";
   }
   const std::string why = this->BuildSampleBands(win, qt);
   if (!why.empty())

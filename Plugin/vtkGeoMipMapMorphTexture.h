@@ -2,14 +2,17 @@
  * @file   vtkGeoMipMapMorphTexture.h
  * @brief  The per-frame geomorph data of vtkGeoMipMapMapper on the GPU (Morph.h).
  *
- * Two textures, so that the vertex shader (vtkGeoMipMapShaders.h) moves a vertex exactly
- * as gmm::morphedHeight does, from its sample (i, j) alone:
- * - gmmMorph, RG32F 2D, texel = (target level, factor) of a block or a shared edge:
+ * Two textures, so that the vertex shader (vtkGeoMipMapShaders.h) places and moves a
+ * vertex exactly as gmm::morphedHeight does, from its sample (i, j) alone:
+ * - gmmMorph, RGB32F 2D, texel = (target level, factor, edge level) of a block or a shared
+ *   edge (the edge level: the polyline a glided edge's samples are drawn on, EdgeHeights.h;
+ *   -1 for a block or an edge not drawn):
  *     rows [0, br):          blocks (c, r)
  *     rows [br, 2 br):       vertical edges (line 0..bc, r)
  *     rows [2 br, 3 br + 1): horizontal edges (c, line 0..br)
- *   with bc x br blocks. It is the only data uploaded per frame for morphing (a few bytes
- *   per block); nothing per vertex.
+ *   with bc x br blocks. It is the only data uploaded per frame for placing vertices (a few
+ *   bytes per block); nothing per vertex. Uploaded with geomorphing off too (factors 0):
+ *   glided edges need their levels.
  * - gmmSampleBands, RGBA32F 2D, made once per quadtree: the block band of every sample
  *   column, then of every sample row, as (band, first sample, last sample), 2^w texels a
  *   row, at most 64 (column i at (i mod 2^w, i >> w); row j likewise after the columns'

@@ -225,18 +225,21 @@ const char* const kDrape =
   "uniform vec4 gmmDrapeMap; // st = grid position * xy + zw\n"
   "vec4 gmmDrapeColor() { return texture(gmmDrape, gmmGridVSOutput * gmmDrapeMap.xy + gmmDrapeMap.zw); }\n";
 
-// Geomorphing in the vertex shader, mirroring gmm::morphedHeight (Morph.cpp) line by line:
-// the block of sample (i, j) from its column's and row's entries in gmmSampleBands (the
-// band search of Quadtree.h's bandOfSample, tabulated: vtkGeoMipMapMorphTexture.h), then the edge
-// or the block it lies on, its target level and factor, and the target: the edge polyline
-// at that level, or the block's cell at that level split as Tessellate splits it
-// (gmm::ringCellAntiDiagonal, Levels.h).
+// Vertex placement and geomorphing in the vertex shader, mirroring gmm::morphedHeight
+// (Morph.cpp) line by line: the block of sample (i, j) from its column's and row's entries
+// in gmmSampleBands (the band search of Quadtree.h's bandOfSample, tabulated:
+// vtkGeoMipMapMorphTexture.h), then the edge or the block it lies on, its target level and
+// factor. An edge vertex starts on the edge's polyline at its level (a glided edge's
+// samples, EdgeHeights.h; the edge's own samples are on it) and moves toward the polyline
+// at the target level; an interior vertex moves toward the block's cell at the target
+// level, split as Tessellate splits it (gmm::ringCellAntiDiagonal, Levels.h), whose corners
+// on the block's border are where their edges draw them (gmm::blockVertexTarget).
 const char* const kMorph =
   "uniform highp sampler2D gmmMorph;\n"
   "uniform ivec2 gmmMorphLayout; // block columns, rows\n"
   "uniform highp sampler2D gmmSampleBands;\n"
   "uniform ivec2 gmmSampleBandsLayout; // log2 texels a row, rows of the column entries\n"
-  "vec2 gmmMorphAt(int x, int y) { return texelFetch(gmmMorph, ivec2(x, y), 0).rg; }\n"
+  "vec3 gmmMorphAt(int x, int y) { return texelFetch(gmmMorph, ivec2(x, y), 0).rgb; }\n"
   "// (band, first sample, last sample, upper-half flag) of sample s along columns\n"
   "// (rows0 = 0) or rows.\n"
   "ivec4 gmmBandOf(int s, int rows0)\n"
@@ -255,7 +258,26 @@ const char* const kMorph =
   "  ivec2 b = alongI ? ivec2(hi, fixedAxis.y) : ivec2(fixedAxis.x, hi);\n"
   "  return gmmLerp(gmmHeight(a), gmmHeight(b), float(s - lo) / float(hi - lo));\n"
   "}\n"
-  "float gmmBlockSurface(ivec2 ij, int i0, int i1, int j0, int j1, int level, bool oneQuadAnti)\n"
+  "// A sample on an edge as the edge draws it, d its texel (target, factor, level): on the\n"
+  "// polyline at its level, moved by the factor toward the polyline at its target.\n"
+  "float gmmEdgeHeight(int first, int last, int s, ivec2 p, bool alongI, vec3 d, float h)\n"
+  "{\n"
+  "  float base = d.z > 0.0 ? gmmPolyline(first, last, int(d.z), s, p, alongI) : h;\n"
+  "  if (!(d.y > 0.0)) { return base; }\n"
+  "  float target = gmmPolyline(first, last, int(d.x), s, p, alongI);\n"
+  "  return abs(target) <= 1.0e38 ? base + d.y * (target - base) : base;\n"
+  "}\n"
+  "// Sample p of block [i0, i1] x [j0, j1] as the block draws it, its edges' texels\n"
+  "// (south, east, north, west) in `edge`: on a side, as that edge draws it.\n"
+  "float gmmBorderHeight(ivec2 p, int i0, int i1, int j0, int j1, vec3 edge[4])\n"
+  "{\n"
+  "  bool onV = p.x == i0 || p.x == i1, onH = p.y == j0 || p.y == j1;\n"
+  "  float h = gmmHeight(p);\n"
+  "  if (onV == onH) { return h; }\n"
+  "  if (onH) { return gmmEdgeHeight(i0, i1, p.x, p, true, edge[p.y == j0 ? 0 : 2], h); }\n"
+  "  return gmmEdgeHeight(j0, j1, p.y, p, false, edge[p.x == i0 ? 3 : 1], h);\n"
+  "}\n"
+  "float gmmBlockSurface(ivec2 ij, int i0, int i1, int j0, int j1, int level, bool oneQuadAnti, vec3 edge[4])\n"
   "{\n"
   "  int step = 1 << level;\n"
   "  int u = (ij.x - i0) >> level, v = (ij.y - j0) >> level;\n"
@@ -267,8 +289,10 @@ const char* const kMorph =
   "  bool anti = ring ? (corner ? (u == k - 1 && v == 0) || (u == 0 && v == L - 1) : ((u + v) & 1) == 1)\n"
   "                   : oneQuadAnti;\n"
   "  float fx = float(ij.x - ia) / float(ib - ia), fy = float(ij.y - ja) / float(jb - ja);\n"
-  "  float h00 = gmmHeight(ivec2(ia, ja)), h10 = gmmHeight(ivec2(ib, ja));\n"
-  "  float h01 = gmmHeight(ivec2(ia, jb)), h11 = gmmHeight(ivec2(ib, jb));\n"
+  "  float h00 = gmmBorderHeight(ivec2(ia, ja), i0, i1, j0, j1, edge);\n"
+  "  float h10 = gmmBorderHeight(ivec2(ib, ja), i0, i1, j0, j1, edge);\n"
+  "  float h01 = gmmBorderHeight(ivec2(ia, jb), i0, i1, j0, j1, edge);\n"
+  "  float h11 = gmmBorderHeight(ivec2(ib, jb), i0, i1, j0, j1, edge);\n"
   "  if (!anti)\n"
   "    return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);\n"
   "  return fx + fy <= 1.0 ? h00 + fx * (h10 - h00) + fy * (h01 - h00)\n"
@@ -281,26 +305,13 @@ const char* const kMorph =
   "  int c = cb.x, i0 = cb.y, i1 = cb.z, r = rb.x, j0 = rb.y, j1 = rb.z;\n"
   "  bool onV = ij.x == i0 || ij.x == i1, onH = ij.y == j0 || ij.y == j1;\n"
   "  if (onV && onH) { return h; }\n"
-  "  vec2 d;\n"
-  "  float target;\n"
-  "  if (onV)\n"
-  "  {\n"
-  "    d = gmmMorphAt(ij.x == i0 ? c : c + 1, br + r);\n"
-  "    if (!(d.y > 0.0)) { return h; }\n"
-  "    target = gmmPolyline(j0, j1, int(d.x), ij.y, ij, false);\n"
-  "  }\n"
-  "  else if (onH)\n"
-  "  {\n"
-  "    d = gmmMorphAt(c, 2 * br + (ij.y == j0 ? r : r + 1));\n"
-  "    if (!(d.y > 0.0)) { return h; }\n"
-  "    target = gmmPolyline(i0, i1, int(d.x), ij.x, ij, true);\n"
-  "  }\n"
-  "  else\n"
-  "  {\n"
-  "    d = gmmMorphAt(c, r);\n"
-  "    if (!(d.y > 0.0)) { return h; }\n"
-  "    target = gmmBlockSurface(ij, i0, i1, j0, j1, int(d.x), cb.w != rb.w);\n"
-  "  }\n"
+  "  if (onV) { return gmmEdgeHeight(j0, j1, ij.y, ij, false, gmmMorphAt(ij.x == i0 ? c : c + 1, br + r), h); }\n"
+  "  if (onH) { return gmmEdgeHeight(i0, i1, ij.x, ij, true, gmmMorphAt(c, 2 * br + (ij.y == j0 ? r : r + 1)), h); }\n"
+  "  vec3 d = gmmMorphAt(c, r);\n"
+  "  if (!(d.y > 0.0)) { return h; }\n"
+  "  vec3 edge[4] = vec3[4](gmmMorphAt(c, 2 * br + r), gmmMorphAt(c + 1, br + r), gmmMorphAt(c, 2 * br + r + 1),\n"
+  "                         gmmMorphAt(c, br + r));\n"
+  "  float target = gmmBlockSurface(ij, i0, i1, j0, j1, int(d.x), cb.w != rb.w, edge);\n"
   "  return abs(target) <= 1.0e38 ? h + d.y * (target - h) : h;\n"
   "}\n";
 

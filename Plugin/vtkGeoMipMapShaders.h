@@ -8,8 +8,9 @@
  *   texture, relative to an anchor sample near the camera (the mapper's camera matrices
  *   carry the anchor's position, in double), so large coordinates keep their precision;
  *   the grid position (i, j) goes to the fragment shader; texture coordinates are
- *   (i / (nx - 1), j / (ny - 1)). With Morph, the height first moves toward its morph
- *   target as gmm::morphedHeight computes it (Morph.h), from the morph texture.
+ *   (i / (nx - 1), j / (ny - 1)). With Morph, the height is first placed as
+ *   gmm::morphedHeight places it (Morph.h: glided edges' samples on their polylines, then
+ *   geomorphing toward the morph target), from the morph texture.
  * - fragment shader: the normal (when lit) comes from the full-resolution slopes at the
  *   fragment's grid position (bilinearly filtered on a one-layer DEM, interpolated on the
  *   level-0 triangle under the fragment otherwise), so shading does not depend on the level
@@ -49,7 +50,7 @@ struct Options
   bool SingleLayer = true;         // the heights fit one texture layer
   bool LogScale = false;           // the lookup table maps log10 of the scalars
   bool Drape = false;              // an image is draped over the colouring
-  bool Morph = false;              // vertices are geomorphed (vtkGeoMipMapMorphTexture.h)
+  bool Morph = false;              // vertices placed from vtkGeoMipMapMorphTexture.h
   int HeightBands = 0; // > 0: heights read in place from this many buffer textures
                        // (vtkGeoMipMapSharedHeights.h) instead of the height texture
   int HeightsPerTexel = 1; // samples in one texel of those buffer textures (a power of two)

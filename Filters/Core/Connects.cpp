@@ -29,15 +29,16 @@ bool hasStripAcross(const Quadtree& qt, const std::vector<int8_t>& levels, int n
 }
 
 // The strip of `block` on `side`, the block drawn at `level` and that side's edge at
-// `edgeLevel`: a connect's half across. A strip reads no other part of its block's
+// `edgeLevel` and `sampleLevel` (BlockConfig): a connect's half across. A strip reads no other part of its block's
 // configuration (emitBlockParts), so the caller passes what it already knows.
 void drawStripOf(const Heightfield& hf, const Quadtree& qt, int block, int level, int side,
-  int edgeLevel, std::vector<uint32_t>& out, EmitScratch& scratch)
+  int edgeLevel, int sampleLevel, std::vector<uint32_t>& out, EmitScratch& scratch)
 {
   BlockConfig config;
   config.level = level;
   config.edgeLevel.fill(level);
   config.edgeLevel[side] = edgeLevel;
+  config.sampleLevel[side] = sampleLevel;
   BlockParts strip;
   strip.side[side] = true;
   emitBlockParts(hf, qt, block, config, strip, out, scratch);
@@ -66,10 +67,10 @@ BlockParts mainAreaParts(const DrawnSides& key)
 void drawConnectAcross(const Heightfield& hf, const Quadtree& qt, const DrawnSides& key, int side,
   int neighbour, std::vector<uint32_t>& out, EmitScratch& scratch)
 {
-  const std::array<int8_t, 2>& across = key.across[side == East ? 0 : 1];
+  const std::array<int8_t, 3>& across = key.across[side == East ? 0 : 1];
   if (across[0] >= 0)
   {
-    drawStripOf(hf, qt, neighbour, across[0], (side + 2) % 4, across[1], out, scratch);
+    drawStripOf(hf, qt, neighbour, across[0], (side + 2) % 4, across[1], across[2], out, scratch);
   }
 }
 
@@ -128,6 +129,7 @@ DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, i
     if (qt.blockIsRingAt(block, config.level) && sideDrawnByNeighbour(levels, neighbour[side]))
     {
       key.config.edgeLevel[side] = -1; // that strip is the neighbour's to draw
+      key.config.sampleLevel[side] = -1;
     }
   }
   for (int side : { East, South })
@@ -135,9 +137,10 @@ DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, i
     const int nb = neighbour[side];
     if (hasStripAcross(qt, levels, nb))
     {
-      // The edge level is the block's own on that side: both blocks of an edge answer
-      // edgeLevelOf alike when both are drawn as blocks.
-      key.across[side == East ? 0 : 1] = { levels[nb], static_cast<int8_t>(config.edgeLevel[side]) };
+      // The edge and sample levels are the block's own on that side: both blocks of an edge
+      // answer edgeLevelOf and sampleLevelOf alike when both are drawn as blocks.
+      key.across[side == East ? 0 : 1] = { levels[nb], static_cast<int8_t>(config.edgeLevel[side]),
+        static_cast<int8_t>(config.sampleLevel[side]) };
     }
   }
   return key;
@@ -152,9 +155,10 @@ void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector
     forEachBlockAlong(qt, qt.nodes[node], side, [&](int b) {
       if (hasStripAcross(qt, levels, b))
       {
+        // Beside a merged node the edge is the block's corners (edgeLevelOf), never glided.
         const int opposite = (side + 2) % 4;
         drawStripOf(hf, qt, b, levels[b], opposite,
-          edgeLevelOf(qt, levels, b, levels[b], opposite, qt.blockNeighbours(b)[opposite]), out, scratch);
+          edgeLevelOf(qt, levels, b, levels[b], opposite, qt.blockNeighbours(b)[opposite]), -1, out, scratch);
       }
     });
   }

@@ -87,6 +87,12 @@ const Frame& FrameDriver::finish(bool morphed)
   {
     frame_.stats.maxScreenError = std::max(frame_.stats.maxScreenError, morph_.maxBoundPixels);
   }
+  else if (hasSelection_ && frame_.error.empty())
+  {
+    // Unmorphed, the frame's glided edges still draw their samples on their polylines.
+    drawnEdgeFrame(engine_.quadtree(), engine_.levels(), morph_, &engine_.drawnBlocks(), &engine_.drawnConfigs());
+    morphCurrent_ = false;
+  }
   return frame_;
 }
 

@@ -111,7 +111,9 @@ public:
 
   const Frame& frame() const { return frame_; }
   const Engine& engine() const { return engine_; }
-  // The morph factors of the frame; meaningful only while frame().morphed.
+  // The heights the frame draws its vertices at (morphedHeight, the mapper's vertex
+  // shader): the morph factors while frame().morphed, all 0 otherwise, and every drawn
+  // block's edge levels, which place the samples of glided edges (EdgeHeights.h).
   const MorphFrame& morph() const { return morph_; }
 
 private:

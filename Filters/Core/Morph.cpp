@@ -1,5 +1,6 @@
 #include "Morph.h"
 
+#include "EdgeHeights.h"
 #include "Levels.h"
 
 #include <algorithm>
@@ -12,33 +13,16 @@ namespace gmm
 namespace
 {
 
-// Height of the polyline through the samples of [first, last] at `level` (edgeSamples), at
-// sample s on that line; `at(k)` gives the height of sample k along the line.
-template <typename At>
-double polylineAt(int first, int last, int level, int s, At at)
-{
-  const long long step = 1LL << level;
-  const long long lo = first + (s - first) / step * step;
-  if (lo == s)
-  {
-    return at(s);
-  }
-  const long long hi = std::min<long long>(lo + step, last);
-  const double w = static_cast<double>(s - lo) / static_cast<double>(hi - lo);
-  const double a = at(static_cast<int>(lo)), b = at(static_cast<int>(hi));
-  return a + w * (b - a);
-}
-
-// Height of block rectangle [i0, i1] x [j0, j1] drawn at `level` with its own edges, at
-// the interior sample (i, j): the cell of the grid edgeSamples(level) x edgeSamples(level)
-// that holds it, split as Tessellate splits it (see Morph.h).
-double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int level, bool oneQuadAnti,
-  int i, int j)
+// Height of block rectangle [i0, i1] x [j0, j1] drawn at `level`, at the interior sample
+// (i, j): the cell of the grid edgeSamples(level) x edgeSamples(level) that holds it, split
+// as Tessellate splits it (see Morph.h), its corners' heights from cornerAt(i, j).
+template <typename CornerAt>
+double blockSurfaceAt(int i0, int i1, int j0, int j1, int level, bool oneQuadAnti, int i, int j, CornerAt cornerAt)
 {
   const long long step = 1LL << level;
   const long long u = (i - i0) / step, v = (j - j0) / step;
-  const long long ia = i0 + u * step, ja = j0 + v * step;
-  const long long ib = std::min<long long>(ia + step, i1), jb = std::min<long long>(ja + step, j1);
+  const int ia = static_cast<int>(i0 + u * step), ja = static_cast<int>(j0 + v * step);
+  const int ib = static_cast<int>(std::min<long long>(ia + step, i1)), jb = static_cast<int>(std::min<long long>(ja + step, j1));
   const long long k = (i1 - i0 + step - 1) / step, L = (j1 - j0 + step - 1) / step; // cells per side
   const bool ring = blockShape(i1 - i0, j1 - j0, level) == BlockShape::Ring;
   const bool anti = ring ? ringCellAntiDiagonal(static_cast<int>(u), static_cast<int>(v), static_cast<int>(k),
@@ -46,9 +30,7 @@ double blockSurfaceAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int
                         : oneQuadAnti;
   const double fx = static_cast<double>(i - ia) / static_cast<double>(ib - ia);
   const double fy = static_cast<double>(j - ja) / static_cast<double>(jb - ja);
-  const double h00 = hf.height(int(ia), int(ja)), h10 = hf.height(int(ib), int(ja));
-  const double h01 = hf.height(int(ia), int(jb)), h11 = hf.height(int(ib), int(jb));
-  return splitQuadHeight(h00, h10, h01, h11, fx, fy, anti);
+  return splitQuadHeight(cornerAt(ia, ja), cornerAt(ib, ja), cornerAt(ia, jb), cornerAt(ib, jb), fx, fy, anti);
 }
 
 double clamp01(double t)
@@ -196,6 +178,36 @@ void resetMorph(const Quadtree& qt, MorphFrame& out)
 
 namespace
 {
+// The drawn blocks into `drawn`: the caller's list, or found in the levels.
+void listDrawn(const std::vector<int8_t>& levels, const std::vector<int>* drawnBlocks, std::vector<int>& drawn)
+{
+  if (drawnBlocks)
+  {
+    drawn = *drawnBlocks;
+    return;
+  }
+  drawn.clear();
+  for (int b = 0; b < static_cast<int>(levels.size()); ++b)
+  {
+    if (levels[b] >= 0)
+    {
+      drawn.push_back(b);
+    }
+  }
+}
+
+// A drawn block's edges at the levels Tessellate draws them with: the coarser of two drawn
+// blocks (both sides agree), the block's top level beside a merged node (corners only:
+// nothing on the edge moves, and the node's fan keeps its perimeter still), 0 on a side at
+// full resolution.
+void setEdgeLevels(const BlockConfig& config, const std::array<MorphEdge*, 4>& edges)
+{
+  for (int side = 0; side < 4; ++side)
+  {
+    edges[side]->level = static_cast<int8_t>(std::max<int>(edges[side]->level, config.edgeLevel[side]));
+  }
+}
+
 // Gives every drawn block a slot (keeping the one it held last frame) and takes the slots
 // back from the blocks no longer drawn.
 void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
@@ -237,6 +249,18 @@ void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
 }
 } // namespace
 
+void drawnEdgeFrame(const Quadtree& qt, const std::vector<int8_t>& levels, MorphFrame& out,
+  const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs)
+{
+  resetMorph(qt, out);
+  listDrawn(levels, drawnBlocks, out.blocks);
+  const bool ownConfigs = drawnConfigs && drawnConfigs->size() == static_cast<std::size_t>(qt.blockCount());
+  for (int b : out.blocks)
+  {
+    setEdgeLevels(ownConfigs ? (*drawnConfigs)[b] : blockConfigOf(qt, levels, b), edgesOf(qt, out, b));
+  }
+}
+
 void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
   const MorphRamp* ramp, const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs,
@@ -254,22 +278,8 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     cache.polylines.reset(blocks);
     cache.heights = hf.heights();
   }
-  // The drawn blocks: the caller's list, or found in the levels.
   std::vector<int>& drawn = out.blocks;
-  if (drawnBlocks)
-  {
-    drawn = *drawnBlocks;
-  }
-  else
-  {
-    for (int b = 0; b < blocks; ++b)
-    {
-      if (levels[b] >= 0)
-      {
-        drawn.push_back(b);
-      }
-    }
-  }
+  listDrawn(levels, drawnBlocks, drawn);
   cache.firstFrame = cache.held.empty();
   assignSlots(drawn, cache);
   const bool limited = ramp && ramp->active();
@@ -308,18 +318,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   drawnEdges.resize(drawn.size());
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
-    // The edge level as Tessellate draws it: the coarser of two drawn blocks (both sides
-    // agree), the block's top level beside a merged node (corners only: nothing on the
-    // edge moves, and the node's fan keeps its perimeter still), 0 on a side at full
-    // resolution.
     const int b = drawn[k];
     configs[k] = ownConfigs ? (*drawnConfigs)[b] : blockConfigOf(qt, levels, b);
     drawnEdges[k] = edgesOf(qt, out, b);
-    for (int side = 0; side < 4; ++side)
-    {
-      MorphEdge* e = drawnEdges[k][side];
-      e->level = static_cast<int8_t>(std::max<int>(e->level, configs[k].edgeLevel[side]));
-    }
+    setEdgeLevels(configs[k], drawnEdges[k]);
   }
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
@@ -481,6 +483,7 @@ unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<i
   {
     return kAllMorphParts;
   }
+  const int target = now[5];
   unsigned parts = 0;
   for (int side = 0; side < 4; ++side)
   {
@@ -488,69 +491,111 @@ unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<i
     {
       parts |= 2u << side;
     }
+    // The target's samples on that side are where the edge draws them (its polyline when
+    // coarser than the target, moving when the edge moves), which the inner grid's and the
+    // two neighbouring strips' ring vertices move toward near it (blockVertexTarget).
+    const int levelWas = was[1 + side] & 31, levelNow = now[1 + side] & 31;
+    const bool moves = was[6 + side] >= 0 || now[6 + side] >= 0;
+    if ((was[1 + side] != now[1 + side] || was[6 + side] != now[6 + side]) && target >= 0 &&
+      (moves || std::max(levelWas, levelNow) > target))
+    {
+      parts |= 1u | (2u << ((side + 1) % 4)) | (2u << ((side + 3) % 4));
+    }
   }
   return parts;
 }
 
 double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
-  const std::array<int, 4>& edgeTarget, int i, int j)
+  const std::array<int, 4>& edgeTarget, const std::array<int, 4>& edgeLevel, int i, int j,
+  const std::array<double, 4>& edgeFactor)
 {
-  const double h = hf.height(i, j);
   const int c = block % qt.blockCols, r = block / qt.blockCols;
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
-  const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
-  if (onV && onH)
-  {
-    return h; // block corner: on every level
-  }
-  if (onV || onH)
-  {
-    const int side = onH ? (j == j0 ? South : North) : (i == i0 ? West : East);
-    if (edgeTarget[side] < 0)
+  // A sample on side s at the edge's height under factor edgeFactor[s] (its base height, or
+  // that far toward the polyline at the edge's target).
+  auto edgeAt = [&](int side, int ei, int ej, double t) {
+    const double base = sideBaseHeight(hf, i0, i1, j0, j1, edgeLevel, ei, ej);
+    if (edgeTarget[side] < 0 || !(t > 0.0))
     {
-      return h;
+      return base;
     }
-    if (onH)
-    {
-      return polylineAt(i0, i1, edgeTarget[side], i, [&hf, j](int s) { return double(hf.height(s, j)); });
-    }
-    return polylineAt(j0, j1, edgeTarget[side], j, [&hf, i](int s) { return double(hf.height(i, s)); });
+    const double to = sidePolylineAt(hf, i0, i1, j0, j1, side, edgeTarget[side], ei, ej);
+    return t >= 1.0 ? to : base + t * (to - base);
+  };
+  const int side = borderSideOf(i0, i1, j0, j1, i, j);
+  if (side >= 0)
+  {
+    return edgeAt(side, i, j, 1.0);
   }
-  return target < 0 ? h : blockSurfaceAt(hf, i0, i1, j0, j1, target, oneQuadAntiDiagonal(qt, block), i, j);
+  const bool corner = (i == i0 || i == i1) && (j == j0 || j == j1);
+  if (target < 0 || corner)
+  {
+    return hf.height(i, j); // a block corner is on every level
+  }
+  return blockSurfaceAt(i0, i1, j0, j1, target, oneQuadAntiDiagonal(qt, block), i, j, [&](int ci, int cj) {
+    const int s = borderSideOf(i0, i1, j0, j1, ci, cj);
+    return s < 0 ? static_cast<double>(hf.height(ci, cj)) : edgeAt(s, ci, cj, edgeFactor[s]);
+  });
 }
 
-double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  const MorphFrame& frame, int i, int j, double* factorOut)
+namespace
+{
+// The edge levels of block b's four sides in a frame (-1 where an edge is not drawn: no
+// vertex of b lies on it then).
+std::array<int, 4> edgeLevelsOf(const std::array<const MorphEdge*, 4>& edges)
+{
+  return { edges[0]->level, edges[1]->level, edges[2]->level, edges[3]->level };
+}
+
+// Sample (i, j)'s block, its base height there (sideBaseHeight) and its target and factor.
+struct VertexMorph
+{
+  double base = 0.0, target = 0.0, t = 0.0;
+};
+
+VertexMorph vertexMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j)
 {
   const int c = bandOfSample(qt.colStart, i), r = bandOfSample(qt.rowStart, j);
   const int b = qt.blockIndex(c, r);
   const std::array<const MorphEdge*, 4> edges = blockEdges(qt, frame, b);
   const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const int side = borderSideOf(i0, i1, j0, j1, i, j);
   const bool onV = i == i0 || i == i1, onH = j == j0 || j == j1;
-  *factorOut = 0.0;
-  if (onV != onH) // on one edge (corners never move)
+  const std::array<int, 4> edgeLevel = edgeLevelsOf(edges);
+  VertexMorph v;
+  v.base = sideBaseHeight(hf, i0, i1, j0, j1, edgeLevel, i, j);
+  if (side >= 0) // on one edge (corners never move)
   {
-    const MorphEdge& e = *edges[onH ? (j == j0 ? South : North) : (i == i0 ? West : East)];
-    *factorOut = e.t;
+    v.t = edges[side]->t;
   }
-  else if (!onV && levels[b] >= 0)
+  else if (!onV && !onH && levels[b] >= 0)
   {
-    *factorOut = frame.blockT[b];
+    v.t = frame.blockT[b];
   }
   const bool interior = !onV && !onH;
   const int target = interior && levels[b] >= 0 ? frame.blockTarget[b] : -1;
-  return blockVertexTarget(hf, qt, b, target,
-    { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, i, j);
+  v.target = blockVertexTarget(hf, qt, b, target,
+    { edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target }, edgeLevel, i, j,
+    { edges[0]->t, edges[1]->t, edges[2]->t, edges[3]->t });
+  return v;
+}
+} // namespace
+
+double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
+  const MorphFrame& frame, int i, int j, double* factorOut)
+{
+  const VertexMorph v = vertexMorph(hf, qt, levels, frame, i, j);
+  *factorOut = v.t;
+  return v.target;
 }
 
 double morphedHeight(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const MorphFrame& frame, int i, int j)
 {
-  double t = 0.0;
-  const double c = morphTarget(hf, qt, levels, frame, i, j, &t);
-  const double h = hf.height(i, j);
-  // t == 0 must give h exactly, even where the target is nodata (NaN).
-  return t > 0.0 && std::isfinite(c) ? h + t * (c - h) : h;
+  const VertexMorph v = vertexMorph(hf, qt, levels, frame, i, j);
+  // t == 0 must give the base exactly, even where the target is nodata (NaN).
+  return v.t > 0.0 && std::isfinite(v.target) ? v.base + v.t * (v.target - v.base) : v.base;
 }
 
 } // namespace gmm

@@ -150,7 +150,9 @@ struct MorphCache
 
 // The parts (MorphBounds.h masks) whose errors a change of a block's key from `was` to `now`
 // invalidates: all of them when its level or target changed, else the strips whose edge
-// level or edge target did.
+// level or edge target did, and where that edge moves or is coarser than the target (the
+// target surface's samples on that side are where the edge draws them), the inner grid and
+// the strips beside that side too.
 unsigned changedMorphParts(const std::array<int8_t, 10>& was, const std::array<int8_t, 10>& now);
 
 // Morph factors for one frame. `levels` and `factor` (pixels per unit of stored height,
@@ -197,21 +199,37 @@ std::array<const MorphEdge*, 4> blockEdges(const Quadtree& qt, const MorphFrame&
 // No morphing at all: every factor 0 (what a frame with geomorphing off draws).
 void clearMorph(const Quadtree& qt, MorphFrame& out);
 
-// Height (stored units) the drawn surface gives sample (i, j) under `frame`: the sample's
-// own height for a vertex that does not move. Only meaningful for samples that drawn
-// triangles use.
+// Height (stored units) the drawn surface gives sample (i, j) under `frame`: its base
+// height (the sample's own, or on a glided edge the edge's polyline: EdgeHeights.h) for a
+// vertex that does not move. Only meaningful for samples that drawn triangles use.
 double morphedHeight(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const MorphFrame& frame, int i, int j);
 
-// The height of the coarse surface a vertex moves toward (its own height when it does not
+// The height of the coarse surface a vertex moves toward (its base height when it does not
 // move), i.e. morphedHeight at factor 1, and the vertex's factor; exposed for tests.
 double morphTarget(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
   const MorphFrame& frame, int i, int j, double* factorOut);
 
-// The one rule for where a vertex goes: sample (i, j) of `block` (inside or on its border)
-// when the interior moves toward level `target` and side s's edge toward the polyline at
-// level `edgeTarget[s]` (-1: does not move). Corners never move.
+// The one rule for where a vertex goes: sample (i, j) of `block` (inside or on its border),
+// the block drawn with edge levels `edgeLevel`, when the interior moves toward level
+// `target` and side s's edge toward the polyline at level `edgeTarget[s]` (-1: does not
+// move). Corners never move; an edge vertex goes to that polyline, or stays at its base
+// height (EdgeHeights.h, sideBaseHeight) when its edge does not move. The interior's target
+// is the block's surface at `target` with its samples on the border where the edges draw
+// them at factors `edgeFactor` (from their base heights toward their targets): the surface
+// the block draws at that level with the same edges, so that a block switching level with
+// its interior fully morphed moves nothing, whatever its edges' factors. Hence an interior
+// vertex's drawn height, h + t_b (target - h), is bilinear in its block's factor and its
+// edges' (MorphBounds.h).
 double blockVertexTarget(const Heightfield& hf, const Quadtree& qt, int block, int target,
-  const std::array<int, 4>& edgeTarget, int i, int j);
+  const std::array<int, 4>& edgeTarget, const std::array<int, 4>& edgeLevel, int i, int j,
+  const std::array<double, 4>& edgeFactor = { 0.0, 0.0, 0.0, 0.0 });
+
+// A frame without geomorphing: every factor 0, each drawn block's edges at the levels it
+// draws them with (the coarser of their blocks'), for the heights of glided edges
+// (EdgeHeights.h) that morphedHeight and the mapper's vertex shader give. `drawnBlocks` and
+// `drawnConfigs` as computeMorph takes them.
+void drawnEdgeFrame(const Quadtree& qt, const std::vector<int8_t>& levels, MorphFrame& out,
+  const std::vector<int>* drawnBlocks = nullptr, const std::vector<BlockConfig>* drawnConfigs = nullptr);
 
 } // namespace gmm

@@ -1,5 +1,6 @@
 #include "MorphBounds.h"
 
+#include "EdgeHeights.h"
 #include "Morph.h"
 
 #include <algorithm>
@@ -109,20 +110,32 @@ bool scanTriangle(const GridTriangle& t, long long area, Visit&& visit)
   return true;
 }
 
+// The largest |x + sum of a subset of a[k]| over the subsets of the sides other than
+// `own` (-1: all four): the worst of the other edges' factors at 0 or 1 (MorphBounds.h).
+inline double worstOverEdges(double x, const double a[4], int own)
+{
+  double up = 0.0, down = 0.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    if (k != own)
+    {
+      (a[k] > 0.0 ? up : down) += a[k];
+    }
+  }
+  return std::max(std::fabs(x + up), std::fabs(x + down));
+}
+
 // One triangle's contribution to a part's four corner errors: at every sample it covers,
 // its drawn height S, the interpolated displacements of its edge (dE) and ring (dR)
-// vertices, against the sample's height. `area`: doubledArea(t). Returns false when nodata
-// is involved. `verticesDone`: the triangle's own vertices are skipped (the caller has added
+// vertices, and of its ring vertices' targets with each side's edge (dR_k, from `c`: 4 per
+// vertex, null when all 0), against the sample's height (MorphBounds.h). `own`: the strip's
+// side (-1 for the inner grid). `area`: doubledArea(t). Returns false when nodata is
+// involved. `verticesDone`: the triangle's own vertices are skipped (the caller has added
 // them, addVertexContribution). `finiteSamples`: every height the triangle covers is known
 // to be finite (a block without nodata), so no sample is tested.
-// Two specialisations cost a sample less (the same maxima: max is exact and order-free):
-// a triangle with no vertex on the block's border (the inner grid's: a strip's triangles
-// all reach the border) has dE = 0, so its samples' |S| and |S + dR| are taken once and
-// added to both pairs of corners; and the finiteness tests are
-// skipped where the samples are finite (the vertices' heights and displacements are tested
-// by the caller, and the weights of a non-degenerate triangle are finite).
 bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, const double h[3],
-  const double d[3], const bool onEdge[3], bool verticesDone, bool finiteSamples, double err[4])
+  const double d[3], const double* const c[3], const bool onEdge[3], int own, bool verticesDone, bool finiteSamples,
+  double err[4])
 {
   if (area == 0)
   {
@@ -131,6 +144,7 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
   const double sign = area < 0 ? -1.0 : 1.0;
   const double inv = 1.0 / static_cast<double>(area < 0 ? -area : area);
   const double dh1 = h[1] - h[0], dh2 = h[2] - h[0]; // relative to vertex 0: a large datum costs no precision
+  const bool coupled = c[0] || c[1] || c[2];
   // A vertex has two edge functions at 0; only rows through a vertex are tested.
   auto isVertex = [&](const long long w[3], bool vertexRow) {
     return verticesDone && vertexRow && (w[0] == 0) + (w[1] == 0) + (w[2] == 0) >= 2;
@@ -143,9 +157,21 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
     const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
     return (l[1] * dh1 + l[2] * dh2) - (H - h[0]);
   };
+  // The ring vertices' target moves with each side's edge, interpolated at the sample.
+  auto couplingAt = [&](const double l[3], double a[4]) {
+    a[0] = a[1] = a[2] = a[3] = 0.0;
+    for (int v = 0; v < 3; ++v)
+    {
+      if (c[v])
+      {
+        for (int k = 0; k < 4; ++k)
+          a[k] += l[v] * c[v][k];
+      }
+    }
+  };
   if (!onEdge[0] && !onEdge[1] && !onEdge[2] && finiteSamples)
   {
-    double e0 = 0.0, e1 = 0.0; // max |S| and |S + dR| over the triangle
+    double e0 = 0.0, e1 = 0.0; // max |S| and |S + dR| (every edge at its worst) over the triangle
     scanTriangle(t, area, [&](long long i, long long j, const long long w[3], bool vertexRow) {
       if (isVertex(w, vertexRow))
       {
@@ -158,7 +184,16 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
       dR += l[1] * d[1];
       dR += l[2] * d[2];
       e0 = std::max(e0, std::fabs(s));
-      e1 = std::max(e1, std::fabs(s + dR));
+      if (coupled)
+      {
+        double a[4];
+        couplingAt(l, a);
+        e1 = std::max(e1, worstOverEdges(s + dR, a, own));
+      }
+      else
+      {
+        e1 = std::max(e1, std::fabs(s + dR));
+      }
       return true;
     });
     err[0] = std::max(err[0], e0);
@@ -183,22 +218,48 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
       return false;
     }
     err[0] = std::max(err[0], std::fabs(s));
-    err[1] = std::max(err[1], std::fabs(s + dR));
     err[2] = std::max(err[2], std::fabs(s + dE));
-    err[3] = std::max(err[3], std::fabs(s + dE + dR));
+    if (coupled)
+    {
+      double a[4];
+      couplingAt(l, a);
+      const double withOwn = own >= 0 ? a[own] : 0.0;
+      err[1] = std::max(err[1], worstOverEdges(s + dR, a, own));
+      err[3] = std::max(err[3], worstOverEdges(s + dE + dR + withOwn, a, own));
+    }
+    else
+    {
+      err[1] = std::max(err[1], std::fabs(s + dR));
+      err[3] = std::max(err[3], std::fabs(s + dE + dR));
+    }
     return true;
   });
 }
 
 // What a vertex sample adds to the four corner errors where its weights are exactly 1 and
-// 0 (rasterise at that sample): the drawn surface is the sample itself (S = 0), moved by
-// its own displacement with the edge factor on the border, with the ring factor inside.
-void addVertexContribution(double d, bool onEdge, double err[4])
+// 0 (rasterise at that sample): the drawn surface is the vertex's base height, s above the
+// sample (0 but on a glided edge, EdgeHeights.h), moved by its own displacement d with the
+// edge factor on the border, with the ring factor inside (its target moving with the
+// edges by c, 4 per side, null when all 0).
+void addVertexContribution(double s, double d, const double* c, bool onEdge, int own, double err[4])
 {
-  const double a = std::fabs(d);
-  err[1] = std::max(err[1], onEdge ? 0.0 : a);
-  err[2] = std::max(err[2], onEdge ? a : 0.0);
-  err[3] = std::max(err[3], a);
+  err[0] = std::max(err[0], std::fabs(s));
+  if (onEdge)
+  {
+    err[1] = std::max(err[1], std::fabs(s));
+    err[2] = std::max(err[2], std::fabs(s + d));
+    err[3] = std::max(err[3], std::fabs(s + d));
+    return;
+  }
+  err[2] = std::max(err[2], std::fabs(s));
+  if (!c)
+  {
+    err[1] = std::max(err[1], std::fabs(s + d));
+    err[3] = std::max(err[3], std::fabs(s + d));
+    return;
+  }
+  err[1] = std::max(err[1], worstOverEdges(s + d, c, own));
+  err[3] = std::max(err[3], worstOverEdges(s + d + (own >= 0 ? c[own] : 0.0), c, own));
 }
 } // namespace
 
@@ -221,19 +282,63 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   if (scratch.displacement.size() < vertices)
   {
     scratch.displacement.resize(vertices);
+    scratch.coupling.resize(4 * vertices);
   }
   scratch.displaced.begin(vertices);
-  // Block vertex v = (i, j)'s displacement at its target, found once per call.
-  auto displacement = [&](std::size_t v, int i, int j, double h) {
+  // Where an interior vertex's target cell reaches the border: sides whose samples it
+  // interpolates (the target's first or last cells across).
+  const long long targetStep = target >= 0 ? 1LL << target : 0;
+  const long long lastU = target >= 0 ? i0 + ((i1 - i0 - 1) / targetStep) * targetStep : 0;
+  const long long lastV = target >= 0 ? j0 + ((j1 - j0 - 1) / targetStep) * targetStep : 0;
+  auto reaches = [&](int side, int i, int j) {
+    switch (side)
+    {
+      case South:
+        return j - j0 < targetStep;
+      case North:
+        return j >= lastV;
+      case West:
+        return i - i0 < targetStep;
+      default:
+        return i >= lastU;
+    }
+  };
+  // Block vertex v = (i, j)'s displacement at its target with the edges at their base
+  // heights, and (interior vertices) how far that target moves with each moving edge (null
+  // when with none), found once per call.
+  auto displacement = [&](std::size_t v, int i, int j, double h, const double** coupling) {
+    double* c = &scratch.coupling[4 * v];
     if (scratch.displaced.mark(v))
     {
-      scratch.displacement[v] = blockVertexTarget(hf, qt, block, target, edgeTarget, i, j) - h;
+      const double t0 = blockVertexTarget(hf, qt, block, target, edgeTarget, config.edgeLevel, i, j);
+      scratch.displacement[v] = t0 - h;
+      c[0] = c[1] = c[2] = c[3] = 0.0;
+      const bool interior = !(i == i0 || i == i1 || j == j0 || j == j1);
+      for (int side = 0; interior && target >= 0 && side < 4; ++side)
+      {
+        if (edgeTarget[side] >= 0 && reaches(side, i, j))
+        {
+          std::array<double, 4> unit{ 0.0, 0.0, 0.0, 0.0 };
+          unit[side] = 1.0;
+          c[side] = blockVertexTarget(hf, qt, block, target, edgeTarget, config.edgeLevel, i, j, unit) - t0;
+        }
+      }
     }
+    *coupling = (c[0] != 0.0 || c[1] != 0.0 || c[2] != 0.0 || c[3] != 0.0) ? c : nullptr;
     return scratch.displacement[v];
   };
+  // Vertices on the border are drawn at their base heights (on a glided edge, its polyline).
+  auto onEdgeLine = [&](int i, int j) { return i == i0 || i == i1 || j == j0 || j == j1; };
   // A block without nodata has finite heights only (the heightfield turns infinities into
   // nodata), and it holds every sample its triangles cover.
   const bool finiteSamples = !qt.blockHasNodata[block];
+  // A coarser block's triangles cut at a glided edge's samples have the same surface:
+  // measured uncut.
+  BlockConfig uncut = config;
+  for (int side = 0; side < 4; ++side)
+  {
+    uncut.sampleLevel[side] = config.cutsSide(side) ? -1 : config.sampleLevel[side];
+  }
   std::vector<GridTriangle>& tris = scratch.triangles;
   for (int p = 0; p < 5; ++p)
   {
@@ -243,13 +348,15 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     }
     const BlockPart part = p == 0 ? BlockPart::Inner : static_cast<BlockPart>(static_cast<int>(BlockPart::StripSouth) + p - 1);
     tris.clear();
-    emitBlockGrid(qt, block, config, part, tris, scratch.emit);
+    emitBlockGrid(qt, block, uncut, part, tris, scratch.emit);
     double err[4] = { 0.0, 0.0, 0.0, 0.0 };
     bool finite = true;
+    const int own = p - 1; // the strip's side, -1 for the inner grid
     scratch.measured.begin(vertices);
     for (const GridTriangle& t : tris)
     {
       double h[3], d[3];
+      const double* coupling[3];
       bool onEdge[3];
       std::size_t v[3];
       bool finiteVertices = true;
@@ -258,10 +365,14 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
         const int i = t.v[k].i, j = t.v[k].j;
         // A block's triangles have their vertices in it.
         v[k] = static_cast<std::size_t>(i - i0) + static_cast<std::size_t>(j - j0) * rowLength;
-        h[k] = hf.height(i, j);
-        d[k] = displacement(v[k], i, j, h[k]);
+        h[k] = onEdgeLine(i, j) ? sideBaseHeight(hf, i0, i1, j0, j1, config.edgeLevel, i, j) : hf.height(i, j);
+        d[k] = displacement(v[k], i, j, h[k], &coupling[k]);
         onEdge[k] = i == i0 || i == i1 || j == j0 || j == j1;
         finiteVertices = finiteVertices && std::isfinite(h[k]) && std::isfinite(d[k]);
+        for (int side = 0; coupling[k] && side < 4; ++side)
+        {
+          finiteVertices = finiteVertices && std::isfinite(coupling[k][side]);
+        }
       }
       // A vertex shared by about six triangles is measured once: in a triangle whose
       // doubled area is a power of two (most of them: a block's cells and fans span powers
@@ -277,7 +388,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
         {
           if (scratch.measured.mark(v[k]))
           {
-            addVertexContribution(d[k], onEdge[k], err);
+            addVertexContribution(h[k] - hf.height(t.v[k].i, t.v[k].j), d[k], coupling[k], onEdge[k], own, err);
           }
         }
         if (area == 1)
@@ -285,7 +396,8 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
           continue; // a half quad covers its three vertices only (Pick's theorem)
         }
       }
-      if (!rasterise(hf, t, signedArea, h, d, onEdge, exactAtVertices, finiteSamples && finiteVertices, err))
+      if (!rasterise(hf, t, signedArea, h, d, coupling, onEdge, own, exactAtVertices, finiteSamples && finiteVertices,
+            err))
       {
         finite = false;
         break;
@@ -312,14 +424,26 @@ bool InnerErrorMemo::hasLevel(const Quadtree& qt, int block, int level) const
     level < qt.blockTopLevels[block];
 }
 
-bool InnerErrorMemo::take(const Quadtree& qt, int block, int level, int target, PartErrors& errors) const
+InnerEdges innerEdgesOf(const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget)
+{
+  InnerEdges e;
+  for (int side = 0; side < 4; ++side)
+  {
+    e[side] = static_cast<int8_t>(config.edgeLevel[side] > target ? config.edgeLevel[side] : -1);
+    e[4 + side] = static_cast<int8_t>(edgeTarget[side]);
+  }
+  return e;
+}
+
+bool InnerErrorMemo::take(
+  const Quadtree& qt, int block, int level, int target, const InnerEdges& edges, PartErrors& errors) const
 {
   if (!this->hasLevel(qt, block, level) || this->first[block] < 0)
   {
     return false;
   }
   const std::size_t at = static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(level);
-  if (this->entries[at].target != target)
+  if (this->entries[at].target != target || this->entries[at].edges != edges)
   {
     return false;
   }
@@ -331,7 +455,8 @@ bool InnerErrorMemo::take(const Quadtree& qt, int block, int level, int target, 
   return true;
 }
 
-void InnerErrorMemo::keep(const Quadtree& qt, int block, int level, int target, const PartErrors& errors)
+void InnerErrorMemo::keep(
+  const Quadtree& qt, int block, int level, int target, const InnerEdges& edges, const PartErrors& errors)
 {
   if (!this->hasLevel(qt, block, level))
   {
@@ -347,6 +472,7 @@ void InnerErrorMemo::keep(const Quadtree& qt, int block, int level, int target, 
   e.errors[1] = errors.inner[1];
   e.target = static_cast<int8_t>(target);
   e.frozen = errors.innerFrozen;
+  e.edges = edges;
 }
 
 void InnerErrorMemo::reset(int blocks)

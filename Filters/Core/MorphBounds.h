@@ -2,15 +2,21 @@
 // what the geomorph factors are chosen from (Morph.h).
 //
 // A part is the inner grid or one side strip (Tessellate's BlockPart). In a strip, the
-// edge vertices (on the block's border) move with the edge's factor t_e and the inner-ring
-// vertices with the block's factor t_b. On every triangle the drawn height is
-//     S + t_e dE + t_b dR
+// edge vertices (on the block's border, from their base heights: EdgeHeights.h) move with
+// the edge's factor t_e and the inner-ring vertices with the block's factor t_b toward
+// targets that follow the edges' factors (Morph.h, blockVertexTarget). On every triangle
+// the drawn height is
+//     S + t_e dE + t_b (dR + t_e dR_e + sum over the other sides k of t_k dR_k)
 // (S the unmorphed triangle, dE and dR the interpolated displacements of its edge and ring
-// vertices at factor 1): affine in (t_e, t_b), hence the bilinear interpolation of its
-// values at the four corners (0 or 1, 0 or 1). Its distance to any sample it covers is
-// therefore at most the bilinear interpolation of the four corner errors E_er (the maximum
-// over the part's samples of |S + e dE + r dR - h|). The inner grid has no edge vertex:
-// its bound is (1 - t_b) E_0 + t_b E_1. These are exact maxima over samples, not estimates.
+// vertices at factor 1 with the edges at their base heights, dR_e and dR_k how far the ring
+// vertices' targets move with side e's and side k's edge): multilinear in the factors, so
+// its distance to a sample is at most the multilinear interpolation of its distances at
+// the factors' corners, and for any t_k in [0, 1] at most the largest over those. The
+// corner errors E_er (e, r in {0, 1}) are the maxima over the part's samples of
+// |S + e dE + r (dR + e dR_e + sum t_k dR_k) - h| with each t_k at its worst (0 or 1), and
+// the strip's bound at (t_e, t_b) their bilinear interpolation. The inner grid has no edge
+// vertex: its bound is (1 - t_b) E_0 + t_b E_1, every side's t_k at its worst. These are
+// exact maxima over samples, not estimates.
 #pragma once
 
 #include "ErrorTable.h"
@@ -83,6 +89,9 @@ struct MorphPartScratch
   EmitScratch emit;
   std::vector<GridTriangle> triangles;
   std::vector<double> displacement; // per block vertex: target height - height
+  // Per block vertex, 4 per side: how far its target moves when that side's edge goes from
+  // its base heights to its target (an interior vertex whose target cell reaches the side).
+  std::vector<double> coupling;
   VertexMarks displaced;            // per call: the vertices whose displacement is set
   VertexMarks measured;             // per part: the vertices measured once (exact weights)
 };
@@ -111,9 +120,11 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
 // t_ring D_ring + t_edge D_edge at any sample (a sample's displacement interpolates its
 // triangle's vertices'), so its corners are at most E + D: E its error as drawn (the
 // block's own error at its level with its own edges, or the strip table's for a coarser
-// edge), D_ring the block's exact error at its target level with its own edges (a ring
-// vertex goes to that surface, blockVertexTarget), D_edge the strip table's error of the
-// side at the edge's target level (which covers that polyline's samples). Where level m
+// edge), D_ring the block's exact error at its target level with the same edges (its own
+// error there, and the strip table's toward edges coarser than the target: a ring vertex
+// goes to that surface, blockVertexTarget), D_edge the strip table's error of the side at
+// the edge's target level (which covers that polyline's samples) plus, on a glided edge,
+// the side's polyline distance at its level (where its vertices start). Where level m
 // nests in the target (a power-of-two block going one level up, Levels.h), a part with
 // every vertex at its target is the target's surface: the inner grid's second corner is
 // D_ring itself, and so is the last corner of a strip of the block's own cells (edge level
@@ -158,21 +169,27 @@ private:
 unsigned boundedPartsOver(const PartErrors& errors, double budget);
 
 // Inner-grid part errors by block and level, kept while the heights are the same. They
-// depend on the block and its level alone (its target is the next valid level), so a block
-// that comes back to a level, whatever the frames between (a jump of the camera, another
-// tau, a stretch out of view), takes them instead of rasterising its inner grid again: at
-// 4097^2 and tau 1 a frame whose blocks all change configuration spent 45 % of its morph
-// time there. A block's entries (one per level below its top, 24 bytes each) are made the
-// first time it morphs, so memory follows the blocks drawn (at most 31 MB at 16385^2 and
-// block 32, once every block has morphed).
+// depend on the block, its level (its target is the next valid level) and its edges where
+// those place the target's samples on the border (InnerEdges), so a block that comes back
+// to a level with the same edges, whatever the frames between (a jump of the camera,
+// another tau, a stretch out of view), takes them instead of rasterising its inner grid
+// again: at 4097^2 and tau 1 a frame whose blocks all change configuration spent 45 % of
+// its morph time there. A block's entries (one per level below its top, 32 bytes each) are
+// made the first time it morphs, so memory follows the blocks drawn (at most 42 MB at
+// 16385^2 and block 32, once every block has morphed).
+// What of a block's edges its inner grid's errors read (blockVertexTarget): per side, its
+// level where coarser than the target (-1 elsewhere), then its target level (-1: still).
+using InnerEdges = std::array<int8_t, 8>;
+InnerEdges innerEdgesOf(const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget);
+
 class InnerErrorMemo
 {
 public:
-  // The kept errors of `block` at `level` with `target` into `errors` (inner, innerFrozen);
-  // false when there are none.
-  bool take(const Quadtree& qt, int block, int level, int target, PartErrors& errors) const;
-  // Keeps `errors`' inner part for `block` at `level` with `target`.
-  void keep(const Quadtree& qt, int block, int level, int target, const PartErrors& errors);
+  // The kept errors of `block` at `level` with `target` and `edges` into `errors` (inner,
+  // innerFrozen); false when there are none.
+  bool take(const Quadtree& qt, int block, int level, int target, const InnerEdges& edges, PartErrors& errors) const;
+  // Keeps `errors`' inner part for `block` at `level` with `target` and `edges`.
+  void keep(const Quadtree& qt, int block, int level, int target, const InnerEdges& edges, const PartErrors& errors);
   // Forgets everything, for `blocks` blocks.
   void reset(int blocks);
   // Lookups answered from what was kept, since the last reset.
@@ -186,6 +203,7 @@ private:
     double errors[2] = { 0.0, 0.0 };
     int8_t target = -2; // -2: not measured
     bool frozen = false;
+    InnerEdges edges{};
   };
   std::vector<int32_t> first; // per block: its first entry (level 0), or -1
   std::vector<Entry> entries;

@@ -19,12 +19,17 @@ namespace
 // level 0 of block 32).
 constexpr std::size_t kParallelMeasures = 32;
 
+// A block's part errors depend on its level and target, and per side on the edge level,
+// whether the block's own cells reach a coarser edge (a glided edge: 32 is added to that
+// side's edge level; on a coarser block's side the cuts change no surface) and the edge
+// target.
 std::array<int8_t, 10> keyOf(const BlockConfig& cfg, int target, const std::array<MorphEdge*, 4>& edges)
 {
-  return { static_cast<int8_t>(cfg.level), static_cast<int8_t>(cfg.edgeLevel[0]),
-    static_cast<int8_t>(cfg.edgeLevel[1]), static_cast<int8_t>(cfg.edgeLevel[2]),
-    static_cast<int8_t>(cfg.edgeLevel[3]), static_cast<int8_t>(target), edges[0]->target,
-    edges[1]->target, edges[2]->target, edges[3]->target };
+  auto side = [&cfg](int s) {
+    return static_cast<int8_t>(cfg.edgeLevel[s] + (cfg.sampleLevel[s] >= 0 && !cfg.cutsSide(s) ? 32 : 0));
+  };
+  return { static_cast<int8_t>(cfg.level), side(0), side(1), side(2), side(3), static_cast<int8_t>(target),
+    edges[0]->target, edges[1]->target, edges[2]->target, edges[3]->target };
 }
 // The targets its four edges move toward (-1: not moving), as the part errors take them.
 std::array<int, 4> edgeTargetsOf(const std::array<MorphEdge*, 4>& edges)
@@ -126,7 +131,9 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
       state.previousKey = state.key;
       state.previousErrors = state.errors;
       parts = changedMorphParts(state.key, key);
-      if ((parts & 1u) && cache.inner.take(qt, b, cfg.level, out.blockTarget[b], state.errors))
+      if ((parts & 1u) &&
+        cache.inner.take(qt, b, cfg.level, out.blockTarget[b],
+          innerEdgesOf(cfg, out.blockTarget[b], edgeTargetsOf(cache.edges[k])), state.errors))
       {
         parts &= ~1u;
         state.errors.bounded &= ~1u;
@@ -184,10 +191,12 @@ void refreshPartErrors(const Heightfield& hf, const Quadtree& qt, const MorphFra
 
   for (const auto& m : measures)
   {
+    const int b = drawn[m.first];
     if (m.second & 1u)
     {
-      const int b = drawn[m.first];
-      cache.inner.keep(qt, b, cache.configs[m.first].level, out.blockTarget[b],
+      const BlockConfig& cfg = cache.configs[m.first];
+      cache.inner.keep(qt, b, cfg.level, out.blockTarget[b],
+        innerEdgesOf(cfg, out.blockTarget[b], edgeTargetsOf(cache.edges[m.first])),
         cache.slots[cache.drawnSlots[m.first]].errors);
     }
   }

@@ -102,7 +102,22 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
     }
   }
   const double own = table.own(block, m);
-  const double ring = table.ownExact(block, target);
+  // The ring vertices' target is the block's surface at `target` with its border samples
+  // where the edges draw them (blockVertexTarget): on a side whose edge is coarser than the
+  // target, on its polyline (the target level's strip toward that edge, glided), and moving
+  // from there toward the polyline at the edge's target (between that strip and the one
+  // toward the edge's target: the surface's distance to a sample is convex in the factor).
+  double ring = table.ownExact(block, target);
+  for (int side = 0; side < 4; ++side)
+  {
+    for (const int n : { config.edgeLevel[side], edgeTarget[side] })
+    {
+      if (n > target && n < table.levels)
+      {
+        ring = std::max(ring, static_cast<double>(table.strip(block, side, target, n)));
+      }
+    }
+  }
   if (!std::isfinite(own) || !std::isfinite(ring))
   {
     return 0;
@@ -133,7 +148,15 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
       continue;
     }
     const double drawn = n > m ? table.strip(block, side, m, n) : own;
+    // Edge vertices go from their base heights to the polyline at the edge's target: at
+    // most that polyline's distance from the side's samples (within the strip table's
+    // error at that edge level), plus, on a glided edge, the base polyline's.
     double edge = edgeTarget[side] >= 0 ? table.strip(block, side, m, edgeTarget[side]) : 0.0;
+    if (edgeTarget[side] >= 0 && n > m)
+    {
+      edge += polylines ? polylines->at(hf, qt, block, side, n, scratch.emit)
+                        : sidePolylineError(hf, qt, block, side, n, scratch.emit);
+    }
     if (!std::isfinite(drawn) || !std::isfinite(edge))
     {
       continue;

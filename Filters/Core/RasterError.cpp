@@ -1,5 +1,6 @@
 #include "RasterError.h"
 
+#include "EdgeHeights.h"
 #include "Levels.h"
 
 #include <algorithm>
@@ -53,6 +54,17 @@ struct SkipLines
   int64_t a, b;
 };
 
+// The height a vertex is drawn at: on a glided line, its polyline's (EdgeHeights.h).
+double glidedHeight(const Heightfield& hf, const GlidedLine& g, GridPoint v, double own)
+{
+  if (g.rows ? v.j != g.line : v.i != g.line)
+  {
+    return own;
+  }
+  return g.rows ? polylineAt(g.first, g.last, g.level, v.i, [&hf, &g](int s) { return double(hf.height(s, g.line)); })
+                : polylineAt(g.first, g.last, g.level, v.j, [&hf, &g](int s) { return double(hf.height(g.line, s)); });
+}
+
 // Error of one triangle over the samples it covers (edges included), in grid space.
 // strict: a nodata vertex or covered nodata sample is an infinite error (the triangle would
 // draw over a hole); otherwise a nodata-touching triangle is an accepted full-res hole.
@@ -61,20 +73,28 @@ struct SkipLines
 // fans and cells Tessellate emits are walked span by span (see below); any other triangle
 // by scanning its bounding box with an inside test, which is cheaper than solving each
 // row's span with integer divisions (measured: 4097^2, one thread, 1.20 s against 1.32 s).
-// skip, when given, names lines whose samples are left out (SkipLines).
+// skip, when given, names lines whose samples are left out (SkipLines); glide, a line whose
+// vertices are drawn on a coarser polyline (GlidedLine).
 //
 // Returns the error as a double (+inf for nodata when strict); maxTriangleError rounds the
 // maximum over a list up to float once, which is the maximum of the rounded errors
 // (rounding up is monotone) without a nextafter per triangle.
-double triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, const SkipLines* skip)
+double triangleError(const Heightfield& hf, const GridTriangle& t, bool strict, const SkipLines* skip,
+  const GlidedLine* glide = nullptr)
 {
   const int64_t nx = hf.nx;
   const int64_t ax = t.v[0].i, ay = t.v[0].j, bx = t.v[1].i, by = t.v[1].j, cx = t.v[2].i, cy = t.v[2].j;
   const float* z = hf.heights();
-  const double za = z[ay * nx + ax], zb = z[by * nx + bx], zc = z[cy * nx + cx];
+  double za = z[ay * nx + ax], zb = z[by * nx + bx], zc = z[cy * nx + cx];
   if (std::isnan(za) || std::isnan(zb) || std::isnan(zc))
   {
     return strict ? kInfD : 0.0;
+  }
+  if (glide)
+  {
+    za = glidedHeight(hf, *glide, t.v[0], za);
+    zb = glidedHeight(hf, *glide, t.v[1], zb);
+    zc = glidedHeight(hf, *glide, t.v[2], zc);
   }
   // Heights relative to vertex a: the difference of two floats of similar magnitude is
   // exact in double, so the error does not depend on a constant height offset (an ECEF-like
@@ -321,12 +341,12 @@ namespace
 {
 // The largest triangleError over a list, rounded up to float once; stops at +inf.
 float maxTriangleError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool strict,
-  const SkipLines* skip)
+  const SkipLines* skip, const GlidedLine* glide = nullptr)
 {
   double worst = 0.0;
   for (const GridTriangle& t : tris)
   {
-    worst = std::max(worst, triangleError(hf, t, strict, skip));
+    worst = std::max(worst, triangleError(hf, t, strict, skip, glide));
     if (worst == kInfD)
     {
       break;
@@ -382,10 +402,10 @@ float polylineError(const Heightfield& hf, const std::vector<GridPoint>& points)
 }
 
 float stripInteriorError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool rows,
-  int lineA, int lineB)
+  int lineA, int lineB, const GlidedLine* glide)
 {
   const SkipLines skip{ rows, lineA, lineB };
-  return maxTriangleError(hf, tris, true, &skip);
+  return maxTriangleError(hf, tris, true, &skip, glide);
 }
 
 } // namespace gmm

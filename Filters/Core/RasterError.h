@@ -39,12 +39,22 @@ float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std
 // an edge draws at the samples on it. Nodata anywhere on it, ends included, gives +inf.
 float polylineError(const Heightfield& hf, const std::vector<GridPoint>& points);
 
+// A block side whose vertices are drawn on a coarser polyline (a glided edge, EdgeHeights.h):
+// row j = line (rows) or column i = line, its vertices at the polyline through the line's
+// samples at `level` from `first` to `last` (its ends: the block's corners).
+struct GlidedLine
+{
+  bool rows;
+  int line, first, last, level;
+};
+
 // Error of a side strip's triangles (Tessellate.h, sidePolylines) at the samples strictly
 // between its two lines, rows j = lineA and j = lineB (rows) or columns i = lineA and
 // i = lineB: the samples on the lines are the polylines' (polylineError), measured once per
 // line instead of once per triangle that touches it. The strip's error is the largest of
-// the three. Nodata is strict (+inf).
+// the three. Nodata is strict (+inf). With `glide`, the vertices on that line are drawn on
+// its polyline (a glided edge's).
 float stripInteriorError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool rows,
-  int lineA, int lineB);
+  int lineA, int lineB, const GlidedLine* glide = nullptr);
 
 } // namespace gmm

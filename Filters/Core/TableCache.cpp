@@ -43,8 +43,10 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // with nodata draw fewer triangles than a finer one, so are allowed; 13: ring blocks split
 // their cells by the union-jack rule (cellAntiDiagonal, Levels.h), which changes their
 // errors at every level above 0, and bands start on even samples (splitBands); 14: bands
-// of the block width from the DEM's first sample (splitBands) instead of halves.
-constexpr uint32_t kFormatVersion = 14;
+// of the block width from the DEM's first sample (splitBands) instead of halves; 15: a
+// strip toward a coarser block's edge draws the block's own cells, its edge samples glided
+// onto the edge's polyline (Tessellate.h, BlockConfig::sampleLevel).
+constexpr uint32_t kFormatVersion = 15;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

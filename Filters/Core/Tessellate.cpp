@@ -134,6 +134,39 @@ BlockParts partsOf(BlockPart part)
   return parts;
 }
 
+// A one-quad block: two triangles, or one fanned cell with a side at full resolution;
+// their sides on glided edges cut at the finer block's samples (EdgeCutSink).
+template <typename Sink>
+void drawOneQuad(Sink& sink, const Quadtree& qt, int block, const BlockConfig& config, const BlockRect& r,
+  EmitScratch& scratch)
+{
+  bool fine[4];
+  if (oneQuadFineSides(qt, block, config, fine))
+  {
+    // A side at full resolution: the quad as one fanned cell (HoleCells.h).
+    drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner, scratch.sides);
+    return;
+  }
+  sink.quad(r.i0, r.j0, r.i1, r.j1, oneQuadAntiDiagonal(qt, block));
+}
+
+// The strip of `side` (sideLines, then drawSideLines), its triangles on a glided edge of a
+// coarser block cut at the finer block's samples.
+template <typename Sink>
+void drawStrip(Sink& sink, const BlockConfig& config, const BlockRect& r, const std::vector<int>& along, int side,
+  EmitScratch& scratch, const HoleCells* cells)
+{
+  sideLines(r, config.level, along, innerRingAt(r, side, config.level), side, config.stripEdgeLevel(side), scratch,
+    cells);
+  if (config.cutsSide(side))
+  {
+    EdgeCutSink<Sink> cut(sink, r.i0, r.i1, r.j0, r.j1, config);
+    drawSideLines(cut, scratch, side);
+    return;
+  }
+  drawSideLines(sink, scratch, side);
+}
+
 template <typename Sink>
 void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& config,
   const BlockParts& parts, EmitScratch& scratch)
@@ -148,14 +181,13 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
     }
     if (shape == BlockShape::OneQuad)
     {
-      bool fine[4];
-      if (oneQuadFineSides(qt, block, config, fine))
+      if (config.cutsSide(South) || config.cutsSide(East) || config.cutsSide(North) || config.cutsSide(West))
       {
-        // A side at full resolution: the quad as one fanned cell (HoleCells.h).
-        drawCellFan(sink, r.i0, r.j0, r.i1, r.j1, fine, scratch.inner, scratch.sides);
+        EdgeCutSink<Sink> cut(sink, r.i0, r.i1, r.j0, r.j1, config);
+        drawOneQuad(cut, qt, block, config, r, scratch);
         return;
       }
-      sink.quad(r.i0, r.j0, r.i1, r.j1, oneQuadAntiDiagonal(qt, block));
+      drawOneQuad(sink, qt, block, config, r, scratch);
       return;
     }
     // Thin: the DEM is one quad wide or tall, so the long sides have no neighbours and the
@@ -210,10 +242,7 @@ void emitBlockTo(Sink& sink, const Quadtree& qt, int block, const BlockConfig& c
   {
     if (parts.side[side] && (!cells || cells->strip[side]))
     {
-      const std::vector<int>& along = side == South || side == North ? C : R;
-      sideLines(r, config.level, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side],
-        scratch, cells);
-      drawSideLines(sink, scratch, side);
+      drawStrip(sink, config, r, side == South || side == North ? C : R, side, scratch, cells);
     }
   }
 }
@@ -269,7 +298,7 @@ void sidePolylines(const Quadtree& qt, int block, const BlockConfig& config, int
 {
   const BlockRect r = blockRect(qt, block);
   const std::vector<int>& along = alongSide(r, side, config.level, scratch);
-  sideLines(r, config.level, along, innerRingAt(r, side, config.level), side, config.edgeLevel[side], scratch,
+  sideLines(r, config.level, along, innerRingAt(r, side, config.level), side, config.stripEdgeLevel(side), scratch,
     cells);
 }
 
@@ -304,6 +333,7 @@ BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels,
   for (int side = 0; side < 4; ++side)
   {
     cfg.edgeLevel[side] = edgeLevelOf(qt, levels, block, cfg.level, side, neighbour[side]);
+    cfg.sampleLevel[side] = sampleLevelOf(qt, levels, block, cfg.level, neighbour[side], cfg.edgeLevel[side]);
   }
   return cfg;
 }

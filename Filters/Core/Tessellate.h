@@ -54,8 +54,27 @@ struct BlockConfig
 {
   int level = 0;                        // the block's own level (valid for the block)
   // Per side: >= level (the coarser neighbour's) or == level; 0 (every sample) on a side at
-  // full resolution (Quadtree::sideAtFullResolutionAt).
+  // full resolution (Quadtree::sideAtFullResolutionAt). The side's drawn polyline is the
+  // edge's samples at this level.
   std::array<int, 4> edgeLevel{ 0, 0, 0, 0 };
+  // Per side: -1 for an edge drawn with its samples at edgeLevel; else a glided edge
+  // (sampleLevelOf), whose vertices are its samples at this finer level, those between
+  // edgeLevel's glided onto edgeLevel's polyline (sideBaseHeight). The finer block of the
+  // edge (sampleLevel == level < edgeLevel) then draws its own cells up to its border; the
+  // coarser one (sampleLevel < level == edgeLevel) draws its own triangles with their sides
+  // on the edge cut at those samples, which lie on them: the same surface.
+  std::array<int, 4> sampleLevel{ -1, -1, -1, -1 };
+  // The level of the samples a side strip's edge line starts from: the block's own on a
+  // glided edge (the coarser block then cuts its triangles at sampleLevel), else edgeLevel.
+  int stripEdgeLevel(int side) const { return sampleLevel[side] >= 0 ? level : edgeLevel[side]; }
+  // Whether the triangles on `side` are cut at the finer samples of a glided edge.
+  bool cutsSide(int side) const { return sampleLevel[side] >= 0 && sampleLevel[side] < level; }
+  // The level of the samples drawn along `side` (a vertex each).
+  int drawnEdgeLevel(int side) const { return sampleLevel[side] >= 0 ? sampleLevel[side] : edgeLevel[side]; }
+  bool operator==(const BlockConfig& o) const
+  {
+    return level == o.level && edgeLevel == o.edgeLevel && sampleLevel == o.sampleLevel;
+  }
 };
 
 // The points along each side of a cell (Side order), for drawing it between two sides.
@@ -112,7 +131,7 @@ void emitBlockGrid(const Quadtree& qt, int block, const BlockConfig& config, Blo
   std::vector<GridTriangle>& out, EmitScratch& scratch);
 
 // The two polylines a ring block's side strip joins (valid for BlockShape::Ring only):
-// scratch.outer gets the edge samples at config.edgeLevel[side] along the block's border,
+// scratch.outer gets the edge samples at config.stripEdgeLevel(side) along the block's border,
 // scratch.inner the inner ring's samples along that side (the block's own level, one step
 // in from the border), both in the block's counter-clockwise direction. Every strip
 // triangle has its vertices on these two lines, which are one row (South, North) or
@@ -188,7 +207,7 @@ bool oneQuadFineSides(const Quadtree& qt, int block, const BlockConfig& config, 
 // kCoveredLevel = drawn by a merged node): 0 on a side at full resolution at these levels
 // (Quadtree::sideAtFullResolutionAt), else the coarser of the two blocks when the neighbour
 // is drawn, the block's top level (corners only) beside a merged node, else the block's
-// own level.
+// own level; and each side's sample level (sampleLevelOf).
 BlockConfig blockConfigOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
 // One side of blockConfigOf: the edge level of `side` of `block` drawn at `level`, with
@@ -209,6 +228,26 @@ inline int edgeLevelOf(const Quadtree& qt, const std::vector<int8_t>& levels, in
   return nl > level ? nl : level;
 }
 
+// One side of blockConfigOf's sample levels (BlockConfig::sampleLevel): the level of the
+// finer of the two blocks of the edge when the levels differ and that block is drawn as a
+// ring at its level (it then draws its own cells up to the edge, their samples on the
+// edge glided onto the coarser level's polyline), else -1 (the edge drawn at `edgeLevel`,
+// edgeLevelOf's answer for the side): beside a merged node, culled space, the DEM's border,
+// on a side at full resolution, and where the finer block is one quad (its corners only).
+// Both blocks of an edge answer alike.
+inline int sampleLevelOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block, int level,
+  int neighbour, int edgeLevel)
+{
+  const int nl = neighbour >= 0 ? levels[neighbour] : -1;
+  if (nl < 0 || nl == level || edgeLevel == 0)
+  {
+    return -1;
+  }
+  const bool mineFiner = level < nl;
+  const int finer = mineFiner ? level : nl;
+  return qt.blockIsRingAt(mineFiner ? block : neighbour, finer) ? finer : -1;
+}
+
 // The levels blockConfigOf reads: the block's, then its neighbours' in blockNeighbours'
 // order (kNoNeighbour beyond the DEM's border). Two level lists that agree on them give
 // the block the same configuration.
@@ -217,19 +256,17 @@ constexpr int8_t kNoNeighbour = -128;
 LevelsAround levelsAround(const Quadtree& qt, const std::vector<int8_t>& levels, int block);
 
 // What drawArea's triangles for `block` depend on: its configuration but for the west /
-// north edge levels whose strips a neighbour draws (-1 there), and the level and edge level
-// of the strips it draws for its east and south neighbours ({-1, -1} where it draws none:
-// no drawn block across, or one drawn as its one quad, which has no strip).
+// north edge and sample levels whose strips a neighbour draws (-1 there), and the level,
+// edge level and sample level of the strips it draws for its east and south neighbours
+// (-1s where it draws none: no drawn block across, or one drawn as its one quad, which has
+// no strip).
 // Two frames with equal keys draw the block's slot alike (the engine keeps the slot then).
 struct DrawnSides
 {
   BlockConfig config;
-  std::array<std::array<int8_t, 2>, 2> across{ { { -1, -1 }, { -1, -1 } } }; // east, south
-  bool operator==(const DrawnSides& o) const
-  {
-    return config.level == o.config.level && config.edgeLevel == o.config.edgeLevel &&
-      across == o.across;
-  }
+  // East, south: the level of the block across, the shared edge's level and sample level.
+  std::array<std::array<int8_t, 3>, 2> across{ { { -1, -1, -1 }, { -1, -1, -1 } } };
+  bool operator==(const DrawnSides& o) const { return config == o.config && across == o.across; }
 };
 DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, int block,
   const BlockConfig& config);

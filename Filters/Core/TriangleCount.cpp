@@ -20,7 +20,18 @@ std::size_t blockTriangleCount(
     case BlockShape::OneQuad:
     {
       bool fine[4];
-      return oneQuadFineSides(qt, block, config, fine) ? fannedCellTriangleCount(w, h, fine) : 2;
+      std::size_t n = oneQuadFineSides(qt, block, config, fine) ? fannedCellTriangleCount(w, h, fine) : 2;
+      // Each sample of a glided edge between the corners cuts one triangle in two.
+      for (int side = South; side <= West; ++side)
+      {
+        if (config.cutsSide(side))
+        {
+          const bool horizontal = side == South || side == North;
+          n += static_cast<std::size_t>(horizontal ? edgeSampleCount(i0, i1, config.sampleLevel[side])
+                                                   : edgeSampleCount(j0, j1, config.sampleLevel[side])) - 2;
+        }
+      }
+      return n;
     }
     case BlockShape::Thin:
       return 2 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
@@ -34,11 +45,12 @@ std::size_t blockTriangleCount(
   // step along either polyline: (edge samples - 1) + (inner ring samples - 1).
   const std::size_t nc = static_cast<std::size_t>(edgeSampleCount(i0, i1, config.level));
   const std::size_t nr = static_cast<std::size_t>(edgeSampleCount(j0, j1, config.level));
-  // Side strips' fans emit one triangle per step along either polyline; this is the edge's.
+  // Side strips' fans emit one triangle per step along either polyline; this is the edge's
+  // (at its drawn samples: a glided edge's cuts add one triangle a sample).
   auto edgeSteps = [&](int side) {
     const bool horizontal = side == South || side == North;
-    return static_cast<std::size_t>(horizontal ? edgeSampleCount(i0, i1, config.edgeLevel[side])
-                                               : edgeSampleCount(j0, j1, config.edgeLevel[side])) - 1;
+    return static_cast<std::size_t>(horizontal ? edgeSampleCount(i0, i1, config.drawnEdgeLevel(side))
+                                               : edgeSampleCount(j0, j1, config.drawnEdgeLevel(side))) - 1;
   };
   if (config.level == 0 && qt.blockHasNodata[block])
   {

@@ -22,6 +22,7 @@
 //                           [--every 10]
 // A measurement, not a test.
 #include "Engine.h"
+#include "EdgeHeights.h"
 #include "Morph.h"
 #include "SelectLevels.h"
 #include "SyntheticTerrain.h"
@@ -136,6 +137,14 @@ int main(int argc, char** argv)
   const gmm::ErrorTable& table = e.errorTable();
   const double top = *std::max_element(hf.z.begin(), hf.z.end());
   std::vector<double> rulePx, nestedPx, neighbourPx;
+  // A block's samples as it draws them at `cfg` (glided edges' on their polylines).
+  auto baseHeights = [&](int block, const gmm::BlockConfig& cfg) {
+    const int c0 = block % qt.blockCols, r0 = block / qt.blockCols;
+    const int bi0 = qt.colStart[c0], bi1 = qt.colStart[c0 + 1], bj0 = qt.rowStart[r0], bj1 = qt.rowStart[r0 + 1];
+    return [&hf, bi0, bi1, bj0, bj1, cfg](int i, int jj) {
+      return gmm::sideBaseHeight(hf, bi0, bi1, bj0, bj1, cfg.edgeLevel, i, jj);
+    };
+  };
   for (int f = 0; f < frames; f += every)
   {
     e.update(gmmtest::poppingFlightView(hf, top, block, stepBlocks, f), tau);
@@ -163,7 +172,7 @@ int main(int argc, char** argv)
       }
       levels[b] = static_cast<int8_t>(a);
       const gmm::BlockConfig was = gmm::blockConfigOf(qt, levels, b);
-      const std::vector<double> after = blockSurface(qt, b, now, [&](int i, int jj) { return double(hf.height(i, jj)); });
+      const std::vector<double> after = blockSurface(qt, b, now, baseHeights(b, now));
       std::array<int, 4> edgeTarget{ -1, -1, -1, -1 };
       for (int s = 0; s < 4; ++s)
       {
@@ -173,7 +182,7 @@ int main(int argc, char** argv)
         }
       }
       const std::vector<double> rule = blockSurface(
-        qt, b, was, [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, b, c, edgeTarget, i, jj); });
+        qt, b, was, [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, b, c, edgeTarget, was.edgeLevel, i, jj); });
       const int i0 = qt.colStart[b % qt.blockCols], j0 = qt.rowStart[b / qt.blockCols], w = qt.blockWidth(b) + 1;
       const std::vector<double> nested =
         blockSurface(qt, b, was, [&](int i, int jj) { return after[static_cast<std::size_t>(jj - j0) * w + (i - i0)]; });
@@ -204,9 +213,8 @@ int main(int argc, char** argv)
           nbTarget[side] = c;
         }
         const std::vector<double> nbBefore = blockSurface(
-          qt, nb, nbWas, [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, nb, -1, nbTarget, i, jj); });
-        const std::vector<double> nbAfter =
-          blockSurface(qt, nb, nbNow, [&](int i, int jj) { return double(hf.height(i, jj)); });
+          qt, nb, nbWas, [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, nb, -1, nbTarget, nbWas.edgeLevel, i, jj); });
+        const std::vector<double> nbAfter = blockSurface(qt, nb, nbNow, baseHeights(nb, nbNow));
         neighbourPx.push_back(tau * largestGap(nbBefore, nbAfter) / nbError);
       }
       levels[b] = static_cast<int8_t>(c);

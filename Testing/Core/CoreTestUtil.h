@@ -5,6 +5,7 @@
 
 #include "Engine.h"
 #include "Heightfield.h"
+#include "Morph.h"
 #include "Quadtree.h"
 #include "View.h"
 
@@ -673,6 +674,23 @@ struct MeasureTransform
       out[r] = m[r][0] * x + m[r][1] * y + m[r][2] * z + m[r][3];
   }
 };
+
+// The heights an Engine's last frame draws its vertices at, unmorphed: the samples of
+// glided edges on their edges' polylines (EdgeHeights.h), every other sample at its own
+// height. What measureScreenError and sampleSurface take as drawnZ for an Engine used
+// alone (FrameDriver::morph() gives the same for a driven frame).
+inline std::vector<double> drawnHeights(const gmm::Engine& e)
+{
+  const gmm::Heightfield& hf = e.heightfield();
+  gmm::MorphFrame f;
+  gmm::drawnEdgeFrame(e.quadtree(), e.levels(), f, &e.drawnBlocks(), &e.drawnConfigs());
+  std::vector<double> z(hf.heights(), hf.heights() + hf.sampleCount());
+  for (uint32_t v : e.indices())
+  {
+    z[v] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, static_cast<int>(v % hf.nx), static_cast<int>(v / hf.nx));
+  }
+  return z;
+}
 
 inline ScreenMeasure measureScreenError(const gmm::Heightfield& hf,
   const std::vector<uint32_t>& indices, const gmm::View* view, double tau,

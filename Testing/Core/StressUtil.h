@@ -71,7 +71,7 @@ inline void expectGoodFrame(const gmm::Engine& e, const gmm::View* view, double 
   const MeshCheckResult mesh = checkMesh(hf, qt.colStart, qt.rowStart, e.indices(), opt);
   EXPECT_EQ(mesh.error, "") << what;
   expectSaneErrorTable(e, what);
-  const ScreenMeasure m = measureScreenError(hf, e.indices(), view, tau);
+  const ScreenMeasure m = measureScreenError(hf, e.indices(), view, tau, MeasureTransform(), drawnHeights(e).data());
   EXPECT_LE(m.maxVertical, st.maxGeometricError * (1 + 1e-6) + 1e-5 * (1 + st.maxGeometricError))
     << what << ": drawn surface further from the samples than the certified geometric bound";
   if (view)

@@ -102,7 +102,7 @@ TEST(ActorMatrix, CoveredAndCertifiedUnderAffineModels)
     const double tau = k % 2 ? 1.0 : 3.0;
     const gmm::FrameStats& st = e.update(v, tau);
     ASSERT_EQ(e.lastError(), "");
-    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, tau, t);
+    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, tau, t, drawnHeights(e).data());
     ++frames;
     coarse += st.visibleBlocks > 0 && m.maxVertical > 0 ? 1 : 0;
     if (tau > 0)
@@ -130,7 +130,7 @@ TEST(ActorMatrix, HeightScaleScalesTheBound)
   EXPECT_EQ(e.levels(), levels1);
   EXPECT_NEAR(b.maxGeometricError, 4.0 * a.maxGeometricError, 1e-9 * (1 + b.maxGeometricError));
   const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), nullptr, 0.0,
-    measureTransform(glm::dmat4(1.0), 0.0, 4.0));
+    measureTransform(glm::dmat4(1.0), 0.0, 4.0), drawnHeights(e).data());
   EXPECT_LE(m.maxVertical, 20.0 * (1 + 1e-6));
   EXPECT_GT(m.maxVertical, 0.0);
 }

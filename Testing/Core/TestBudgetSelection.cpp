@@ -126,7 +126,7 @@ TEST(BudgetSelection, DrawnSurfaceWithinReportedError)
         const gmm::FrameStats s = e.update(v, 0.0, budget);
         ASSERT_EQ(e.lastError(), "");
         const double bound = s.maxScreenError;
-        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, bound);
+        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, bound, MeasureTransform(), drawnHeights(e).data());
         EXPECT_EQ(m.uncovered, 0u) << c.name << " " << m.first;
         EXPECT_EQ(m.violations, 0u) << c.name << " budget " << budget << ": measured " << m.maxDist
                                     << " px > reported " << bound << " px; " << m.first;
@@ -143,9 +143,8 @@ TEST(BudgetSelection, DrawnSurfaceWithinReportedError)
 // Budgeted frames against the tau-driven frame at its triangle count.
 //  - Block by block (merged nodes off in both): phase 1 bisects a family of selections
 //    whose count falls as tau grows, to within kBudgetTauPrecision (1 %), so its selection's
-//    error is at most tau (1 + 1 %), and phase 2 only lowers it; no worse on average. (It
-//    was never worse at all on these frames until the tight projection factor moved the
-//    levels' thresholds: one frame in 371 is now 1.5 % worse, within that precision.)
+//    error is at most tau (1 + 1 %), and phase 2 only lowers it; no worse on average beyond
+//    that precision's hundredth (one frame in 371 is 0.4 % worse, within the precision).
 //  - With merged nodes (the default, in both): a node drawn whole can cost more triangles
 //    than its blocks or reach outside the view, so the count is not monotone in tau; a cold
 //    search walks down through the bumps below its bracket (kWalkSteps), and on these
@@ -213,7 +212,7 @@ TEST(BudgetSelection, NeverWorseThanTauAtTheSameTriangleCount)
           for (const gmm::Engine* e : { &tauMerged, &budgetMerged })
           {
             const double bound = e->stats().maxScreenError;
-            const ScreenMeasure m = measureScreenError(e->heightfield(), e->indices(), &v, bound);
+            const ScreenMeasure m = measureScreenError(e->heightfield(), e->indices(), &v, bound, MeasureTransform(), drawnHeights(*e).data());
             EXPECT_EQ(m.violations, 0u) << c.name << " tau " << tau << ": " << m.first;
             ++measured;
           }
@@ -235,7 +234,7 @@ TEST(BudgetSelection, NeverWorseThanTauAtTheSameTriangleCount)
   std::printf("[ budget vs tau ] %d merged-node frames measured within their reported bounds\n", measured);
   EXPECT_GT(blockwise.compared, 100);
   EXPECT_GT(merged.compared, 100);
-  EXPECT_LE(blockwise.mean(), 1.0);
+  EXPECT_LE(blockwise.mean(), 1.0 + 1e-2 * gmm::kBudgetTauPrecision);
   EXPECT_LE(merged.worse, mergedBefore.worse);
   EXPECT_LT(merged.mean(), 1.0);
   // Merged nodes: measured, not guaranteed (above): worse than the precision on at most 1 %
@@ -287,7 +286,7 @@ TEST(BudgetSelection, WarmStartAlongAFlight)
         EXPECT_EQ(replay.indices(), warm.indices()) << c.name << " frame " << k << ": not reproduced";
         if (k % 4 == 0)
         {
-          const ScreenMeasure m = measureScreenError(warm.heightfield(), warm.indices(), &v, w.maxScreenError);
+          const ScreenMeasure m = measureScreenError(warm.heightfield(), warm.indices(), &v, w.maxScreenError, MeasureTransform(), drawnHeights(warm).data());
           EXPECT_EQ(m.violations, 0u) << c.name << " frame " << k << ": " << m.first;
           ++measured;
         }
@@ -325,7 +324,7 @@ TEST(BudgetSelection, TauStopsWhenItComesFirst)
     const gmm::FrameStats s = e.update(v, 2.0, std::size_t(1) << 40);
     EXPECT_FALSE(s.budgetReached);
     EXPECT_LE(s.maxScreenError, 2.0);
-    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, 2.0);
+    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, 2.0, MeasureTransform(), drawnHeights(e).data());
     EXPECT_EQ(m.violations, 0u) << m.first;
   }
 }
@@ -360,7 +359,7 @@ TEST(BudgetSelection, FullResolutionWithinBudgetIsFoundAtOnce)
         EXPECT_EQ(b.maxScreenError, 0.0) << c.name;
         EXPECT_LE(b.triangles, f.triangles) << c.name;
         EXPECT_LE(b.budgetTrials, 1) << c.name << ": " << b.budgetTrials << " selections";
-        const ScreenMeasure m = measureScreenError(budgeted.heightfield(), budgeted.indices(), &v, 1e-9);
+        const ScreenMeasure m = measureScreenError(budgeted.heightfield(), budgeted.indices(), &v, 1e-9, MeasureTransform(), drawnHeights(budgeted).data());
         EXPECT_EQ(m.violations, 0u) << c.name << ": " << m.first;
         ++frames;
       }

@@ -79,7 +79,7 @@ gmm::View randomView(Rng& rng, const gmm::Heightfield& hf, bool parallel)
 
 ScreenMeasure measure(const gmm::Engine& e, const gmm::View& view, double tau)
 {
-  return measureScreenError(e.heightfield(), e.indices(), &view, tau);
+  return measureScreenError(e.heightfield(), e.indices(), &view, tau, MeasureTransform(), drawnHeights(e).data());
 }
 
 void describe(std::ostream& os, const gmm::Heightfield& hf, const gmm::View& v, double tau, int maxQ)

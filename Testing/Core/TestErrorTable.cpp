@@ -112,12 +112,33 @@ namespace
 // Independent of the engine's rasteriser: every sample of the triangle's box tested with
 // cross products, the surface from the plane through the three vertices, in long double.
 // sawNodata, when given, is set when a covered sample is nodata.
-double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t, bool* sawNodata = nullptr)
+// A block side whose vertices are drawn on a coarser polyline (a glided edge): row j = line
+// (rows) or column i = line, the polyline through that line's samples first, first + 2^level,
+// ..., last; its height at a sample by hand (long double).
+struct GlideLine
+{
+  bool rows = true;
+  int line = -1, first = 0, last = 0, level = 0;
+  long double at(const gmm::Heightfield& hf, const gmm::GridPoint& p) const
+  {
+    const int s = rows ? p.i : p.j;
+    auto h = [&](int k) { return static_cast<long double>(rows ? hf.height(k, line) : hf.height(line, k)); };
+    const int step = 1 << level, lo = first + (s - first) / step * step, hi = std::min(lo + step, last);
+    return lo == s ? h(s) : h(lo) + (h(hi) - h(lo)) * (s - lo) / static_cast<long double>(hi - lo);
+  }
+  bool on(const gmm::GridPoint& p) const { return line >= 0 && (rows ? p.j == line : p.i == line); }
+};
+
+double bruteTriangleError(const gmm::Heightfield& hf, const gmm::GridTriangle& t, bool* sawNodata = nullptr,
+  const GlideLine& glide = GlideLine())
 {
   const auto& a = t.v[0];
   const auto& b = t.v[1];
   const auto& c = t.v[2];
-  const long double za = hf.height(a.i, a.j), zb = hf.height(b.i, b.j), zc = hf.height(c.i, c.j);
+  auto vertex = [&](const gmm::GridPoint& p) {
+    return glide.on(p) ? glide.at(hf, p) : static_cast<long double>(hf.height(p.i, p.j));
+  };
+  const long double za = vertex(a), zb = vertex(b), zc = vertex(c);
   const long long area = static_cast<long long>(b.i - a.i) * (c.j - a.j) - static_cast<long long>(b.j - a.j) * (c.i - a.i);
   double worst = 0.0;
   for (int j = std::min({ a.j, b.j, c.j }); j <= std::max({ a.j, b.j, c.j }); ++j)
@@ -185,14 +206,16 @@ std::array<int, 4> ownEdges(const gmm::Quadtree& qt, int b, int m)
 }
 
 // The triangles of one side strip of block b at level m whose edge is sampled at level n
-// (the other edges its own), replacing `tris`.
+// (the other edges its own), replacing `tris`; with `glided`, the edge's samples at m drawn
+// on its polyline at n instead (BlockConfig::sampleLevel: a coarser block across).
 void emitStrip(const gmm::Quadtree& qt, int b, int m, int side, int n,
-  std::vector<gmm::GridTriangle>& tris, gmm::EmitScratch& scratch)
+  std::vector<gmm::GridTriangle>& tris, gmm::EmitScratch& scratch, bool glided = false)
 {
   gmm::BlockConfig cfg;
   cfg.level = m;
   cfg.edgeLevel = ownEdges(qt, b, m);
   cfg.edgeLevel[side] = n;
+  cfg.sampleLevel[side] = glided && n > m ? m : -1;
   tris.clear();
   gmm::emitBlockGrid(qt, b, cfg, static_cast<gmm::BlockPart>(static_cast<int>(gmm::BlockPart::StripSouth) + side),
     tris, scratch);
@@ -252,12 +275,13 @@ TEST(ErrorTable, StripAndOwnEntriesEqualBruteForceOverTheirTriangles)
   Rng rng(4242);
   int compared = 0, withNodata = 0;
   // Brute force with nodata: +inf when a covered sample (vertices included) is nodata.
-  auto bruteStrict = [](const gmm::Heightfield& hf, const std::vector<gmm::GridTriangle>& tris) {
+  auto bruteStrict = [](const gmm::Heightfield& hf, const std::vector<gmm::GridTriangle>& tris,
+                       const GlideLine& glide = GlideLine()) {
     double worst = 0.0;
     for (const gmm::GridTriangle& t : tris)
     {
       bool nodata = false;
-      const double e = bruteTriangleError(hf, t, &nodata);
+      const double e = bruteTriangleError(hf, t, &nodata, glide);
       if (nodata)
         return static_cast<double>(INFINITY);
       worst = std::max(worst, e);
@@ -339,10 +363,26 @@ TEST(ErrorTable, StripAndOwnEntriesEqualBruteForceOverTheirTriangles)
             emitStrip(qt, b, m, side, m, tris, scratch);
             running = bruteStrict(hf, tris);
           }
+          // A coarser block across glides the edge (its samples at m on the polyline at n); a
+          // merged node across has the block's corners only, at its top level, and the
+          // strip fans to them.
+          const int c = b % qt.blockCols, r = b / qt.blockCols;
+          GlideLine glide;
+          glide.rows = side == gmm::South || side == gmm::North;
+          glide.line = side == gmm::South ? qt.rowStart[r] : side == gmm::North ? qt.rowStart[r + 1]
+            : side == gmm::West ? qt.colStart[c] : qt.colStart[c + 1];
+          glide.first = glide.rows ? qt.colStart[c] : qt.rowStart[r];
+          glide.last = glide.rows ? qt.colStart[c + 1] : qt.rowStart[r + 1];
           for (int n = m + 1; n < table.levels; ++n)
           {
-            emitStrip(qt, b, m, side, n, tris, scratch);
-            running = std::max(running, bruteStrict(hf, tris));
+            glide.level = n;
+            emitStrip(qt, b, m, side, n, tris, scratch, true);
+            running = std::max(running, bruteStrict(hf, tris, glide));
+            if (n == top)
+            {
+              emitStrip(qt, b, m, side, n, tris, scratch);
+              running = std::max(running, bruteStrict(hf, tris));
+            }
             expectNear(table.strip(b, side, m, n), running, "strip", b, m, n, side);
           }
         }

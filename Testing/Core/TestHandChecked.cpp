@@ -3,6 +3,7 @@
 // set of triangles (compared up to rotation) must equal one such choice per cell.
 #include "CoreTestUtil.h"
 #include "Engine.h"
+#include "Morph.h"
 #include "Tessellate.h"
 
 #include <gtest/gtest.h>
@@ -122,27 +123,41 @@ TEST(HandChecked, SixByNineThinStripsLevel1)
   expectCells(out, 6, { 0, 5 }, { 0, 8 });
 }
 
-// Two blocks side by side at levels 0 and 1: the shared edge is sampled at level 1 by both,
-// so the fine block must not use the odd samples of the shared column.
+// Two blocks side by side at levels 0 and 1: the shared edge is glided. Both blocks use
+// its samples at level 0 (the fine block's own cells reach it, the coarse block cuts its
+// triangles there), and those between level 1's are drawn on the level-1 polyline.
 TEST(HandChecked, TwoBlocksStitchedAtCoarserEdge)
 {
   gmm::Heightfield hf = ramp(9, 5); // 8 x 4 quads, block size 4 -> two 4x4 blocks
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 9; ++i)
+      hf.z[hf.index(i, j)] += static_cast<float>((i * 7 + j * 13) % 5); // not a plane
   gmm::Quadtree qt = gmm::buildQuadtree(hf, 4);
   ASSERT_EQ(qt.colStart, (std::vector<int>{ 0, 4, 8 }));
   std::vector<uint32_t> out;
   gmm::tessellate(hf, qt, { 0, 1 }, out);
   std::set<uint32_t> used(out.begin(), out.end());
-  for (int j : { 1, 3 })
-    EXPECT_EQ(used.count(static_cast<uint32_t>(j * 9 + 4)), 0u) << "odd sample (4," << j << ") on the shared edge is used";
-  for (int j : { 0, 2, 4 })
-    EXPECT_EQ(used.count(static_cast<uint32_t>(j * 9 + 4)), 1u);
-  // the coarse block uses exactly its level-1 samples
+  for (int j = 0; j < 5; ++j)
+    EXPECT_EQ(used.count(static_cast<uint32_t>(j * 9 + 4)), 1u) << "sample (4," << j << ") on the shared edge";
+  // the coarse block uses exactly its level-1 samples (and the shared edge's)
   for (int j = 0; j < 5; ++j)
     for (int i = 5; i < 9; ++i)
       EXPECT_EQ(used.count(static_cast<uint32_t>(j * 9 + i)), (i % 2 == 0 && j % 2 == 0) ? 1u : 0u) << i << "," << j;
-  // the fine block's interior (not on its east edge) uses all samples
+  // the fine block uses all its samples
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 4; ++i)
       EXPECT_EQ(used.count(static_cast<uint32_t>(j * 9 + i)), 1u) << i << "," << j;
+  // (4, 1) and (4, 3) drawn halfway between their level-1 neighbours on the edge; the
+  // others at their own heights.
+  gmm::MorphFrame f;
+  const std::vector<int8_t> levels{ 0, 1 };
+  gmm::drawnEdgeFrame(qt, levels, f);
+  auto h = [&](int i, int j) { return static_cast<double>(hf.height(i, j)); };
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, qt, levels, f, 4, 1), 0.5 * (h(4, 0) + h(4, 2)));
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, qt, levels, f, 4, 3), 0.5 * (h(4, 2) + h(4, 4)));
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, qt, levels, f, 4, 2), h(4, 2));
+  EXPECT_DOUBLE_EQ(gmm::morphedHeight(hf, qt, levels, f, 3, 1), h(3, 1));
+  // the coarse block's triangles on the edge: cut at (4, 1) and (4, 3), 8 + 2 of them
+  EXPECT_EQ(out.size() / 3, 32u + 10u);
   EXPECT_EQ(checkMesh(hf, qt.colStart, qt.rowStart, out, {}).error, "");
 }

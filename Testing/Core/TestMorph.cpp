@@ -16,6 +16,7 @@
 #include "CoreTestUtil.h"
 #include "Engine.h"
 #include "Levels.h"
+#include "EdgeHeights.h"
 #include "Morph.h"
 #include "MorphBounds.h"
 #include "MorphTestUtil.h"
@@ -79,8 +80,25 @@ MorphKey randomMorphKey(const gmm::Quadtree& qt, int b, Rng& rng)
   {
     k[1 + s] = static_cast<int8_t>(randInt(rng, k[0], top));
     k[6 + s] = static_cast<int8_t>(k[1 + s] < top && randInt(rng, 0, 1) ? randInt(rng, k[1 + s] + 1, top) : -1);
+    // An edge coarser than a ring block is glided (its own cells up to it) or not (fanned
+    // to it, beside a merged node), as the part cache's keys say: 32 added when glided.
+    if (k[1 + s] > k[0] && gmm::blockShape(w, h, k[0]) == gmm::BlockShape::Ring && randInt(rng, 0, 1))
+      k[1 + s] = static_cast<int8_t>(k[1 + s] + 32);
   }
   return k;
+}
+
+// The configuration a MorphKey stands for (a glided edge's side field has 32 added).
+gmm::BlockConfig configOfKey(const MorphKey& k)
+{
+  gmm::BlockConfig cfg;
+  cfg.level = k[0];
+  for (int s = 0; s < 4; ++s)
+  {
+    cfg.edgeLevel[s] = k[1 + s] & 31;
+    cfg.sampleLevel[s] = k[1 + s] >= 32 ? k[0] : -1;
+  }
+  return cfg;
 }
 } // namespace
 
@@ -400,7 +418,8 @@ TEST(Morph, PartErrorsEqualTheMorphedSurfaceSampled)
 {
   // morphPartErrors' corner errors against the surface they bound, sampled independently:
   // for each part and each corner (edge vertices as drawn or at their targets, ring
-  // vertices likewise), the part's triangles (emitBlock) with their vertices moved so
+  // vertices likewise, toward targets that follow the other edges at each of their
+  // extremes), the part's triangles (emitBlock) with their vertices moved so
   // (blockVertexTarget, checked by HandComputed) are rasterised by sampleSurface
   // (CoreTestUtil: every lattice point of the bounding box, its own barycentric weights),
   // and the largest |drawn - sample| over the samples they cover is the corner's error.
@@ -415,11 +434,10 @@ TEST(Morph, PartErrorsEqualTheMorphedSurfaceSampled)
   for (int trial = 0; trial < 400; ++trial)
   {
     const int b = randInt(rng, 0, qt.blockCount() - 1);
+    // Half the edges coarser than the block glided (its own cells up to them, their
+    // samples on the edge's polyline), half fanned (as beside a merged node).
     const MorphKey k = randomMorphKey(qt, b, rng);
-    gmm::BlockConfig cfg;
-    cfg.level = k[0];
-    for (int s = 0; s < 4; ++s)
-      cfg.edgeLevel[s] = k[1 + s];
+    const gmm::BlockConfig cfg = configOfKey(k);
     const std::array<int, 4> edgeTarget{ k[6], k[7], k[8], k[9] };
     const gmm::PartErrors pe = gmm::morphPartErrors(hf, qt, b, cfg, k[5], edgeTarget, scratch);
     const int c = b % qt.blockCols, r = b / qt.blockCols;
@@ -435,19 +453,28 @@ TEST(Morph, PartErrorsEqualTheMorphedSurfaceSampled)
         const int e = corner / 2, rr = corner % 2; // PartErrors::side's e * 2 + r
         if (p == 0 && e == 1)
           continue; // the inner grid has no edge vertex
-        for (uint32_t v : idx)
-        {
-          const int i = static_cast<int>(v % hf.nx), j = static_cast<int>(v / hf.nx);
-          const double h = hf.height(i, j);
-          const bool onEdge = i == i0 || i == i1 || j == j0 || j == j1;
-          const double target = gmm::blockVertexTarget(hf, qt, b, k[5], edgeTarget, i, j);
-          drawnZ[v] = h + (onEdge ? e : rr) * (target - h);
-        }
-        const SurfaceSample surf = sampleSurface(hf, idx, drawnZ.data());
+        // The ring vertices' targets follow the edges' factors: the strip's own edge at e,
+        // every other edge at 0 or 1, the worst of them (MorphBounds.h).
         double expected = 0.0;
-        for (std::size_t s = 0; s < hf.z.size(); ++s)
-          if (surf.covered[s])
-            expected = std::max(expected, std::fabs(surf.z[s] - hf.z[s]));
+        for (int mask = 0; mask < 16; ++mask)
+        {
+          std::array<double, 4> factor{};
+          for (int s = 0; s < 4; ++s)
+            factor[s] = s == p - 1 ? e : (mask >> s) & 1;
+          for (uint32_t v : idx)
+          {
+            const int i = static_cast<int>(v % hf.nx), j = static_cast<int>(v / hf.nx);
+            // Edge vertices start on their edge's polyline (its own samples are on it).
+            const bool onEdge = i == i0 || i == i1 || j == j0 || j == j1;
+            const double h = onEdge ? gmm::sideBaseHeight(hf, i0, i1, j0, j1, cfg.edgeLevel, i, j) : hf.height(i, j);
+            const double target = gmm::blockVertexTarget(hf, qt, b, k[5], edgeTarget, cfg.edgeLevel, i, j, factor);
+            drawnZ[v] = h + (onEdge ? e : rr) * (target - h);
+          }
+          const SurfaceSample surf = sampleSurface(hf, idx, drawnZ.data());
+          for (std::size_t s = 0; s < hf.z.size(); ++s)
+            if (surf.covered[s])
+              expected = std::max(expected, std::fabs(surf.z[s] - hf.z[s]));
+        }
         const double got = p == 0 ? pe.inner[rr] : pe.side[p - 1][corner];
         ASSERT_NEAR(got, expected, 1e-9 * (1.0 + expected))
           << "trial " << trial << " block " << b << " part " << p << " corner " << corner;
@@ -474,11 +501,7 @@ TEST(Morph, PartErrorsRecomputedPartByPartEqualFreshOnes)
   using Key = MorphKey;
   auto randomKey = [&](int b) { return randomMorphKey(qt, b, rng); };
   auto errorsOf = [&](int b, const Key& k, unsigned parts, gmm::PartErrors& e) {
-    gmm::BlockConfig cfg;
-    cfg.level = k[0];
-    for (int s = 0; s < 4; ++s)
-      cfg.edgeLevel[s] = k[1 + s];
-    gmm::updateMorphPartErrors(hf, qt, b, cfg, k[5], { k[6], k[7], k[8], k[9] }, parts, e, scratch);
+    gmm::updateMorphPartErrors(hf, qt, b, configOfKey(k), k[5], { k[6], k[7], k[8], k[9] }, parts, e, scratch);
   };
   int partial = 0, strips = 0;
   for (int trial = 0; trial < 3000; ++trial)
@@ -489,17 +512,18 @@ TEST(Morph, PartErrorsRecomputedPartByPartEqualFreshOnes)
     const Key other = randomKey(b);
     switch (randInt(rng, 0, 3))
     {
-      case 0: // a neighbour changed one edge's level and/or target
+      case 0: // a neighbour changed one edge's level (glided or not) and/or target
       {
         const int s = randInt(rng, 0, 3);
-        now[1 + s] = std::max(other[1 + s], was[0]);
-        now[6 + s] = now[1 + s] < other[6 + s] ? other[6 + s] : -1;
+        const int edge = std::max(other[1 + s] & 31, static_cast<int>(was[0]));
+        now[1 + s] = static_cast<int8_t>(edge + (other[1 + s] >= 32 && edge > was[0] ? 32 : 0));
+        now[6 + s] = (now[1 + s] & 31) < other[6 + s] ? other[6 + s] : -1;
         break;
       }
       case 1: // one edge's target alone
       {
         const int s = randInt(rng, 0, 3);
-        now[6 + s] = now[1 + s] < other[6 + s] ? other[6 + s] : -1;
+        now[6 + s] = (now[1 + s] & 31) < other[6 + s] ? other[6 + s] : -1;
         break;
       }
       case 2: // the block's own target

@@ -866,10 +866,15 @@ TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
       std::vector<std::array<int8_t, 10>>& keys = history[b];
       returns += keys.size() >= 2 && keys.back() != k && keys[keys.size() - 2] == k;
       keys.push_back(k);
+      // The key's side fields: the edge level, 32 added where the block's cells reach a
+      // coarser edge (glided).
       gmm::BlockConfig cfg;
       cfg.level = k[0];
       for (int s = 0; s < 4; ++s)
-        cfg.edgeLevel[s] = k[1 + s];
+      {
+        cfg.edgeLevel[s] = k[1 + s] & 31;
+        cfg.sampleLevel[s] = k[1 + s] >= 32 ? k[0] : -1;
+      }
       const gmm::PartErrors fresh = gmm::morphPartErrors(e.heightfield(), e.quadtree(), b, cfg, k[5],
         { k[6], k[7], k[8], k[9] }, scratch);
       ASSERT_EQ(std::memcmp(st.errors.inner, fresh.inner, sizeof fresh.inner), 0) << "frame " << f << " block " << b;
@@ -882,7 +887,8 @@ TEST(MorphRamp, CachedPartErrorsAreTheirKeysAlongBudgetedFrames)
   std::printf("[ morph cache ] %d drawn blocks checked, %d went back to the key before, %zu inner "
               "grids taken from InnerErrorMemo\n", checked, returns, cache.inner.taken());
   EXPECT_GE(returns, 20) << "the flight does not exercise the key before";
-  EXPECT_GE(cache.inner.taken(), 20u) << "the flight does not exercise the inner-grid memo";
+  // Taken only where the block is back with the same edges too (InnerEdges): 17 times.
+  EXPECT_GE(cache.inner.taken(), 10u) << "the flight does not exercise the inner-grid memo";
 }
 
 TEST(MorphRamp, FloorIsBelowThePath)

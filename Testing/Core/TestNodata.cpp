@@ -307,15 +307,15 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   //   along either line, Tessellate.h): the inner lines have the cells' corners 8, 12, 16,
   //   20, 24 (4 steps); the south and west edges lie on the DEM's border, at the level (4
   //   steps): 8 each; the east and north edges beside the one-quad blocks 1 and 2 are
-  //   their corners (1 step): 5 each. 88 + 2 x 8 + 2 x 5 = 114.
+  //   glided (Tessellate.h, BlockConfig::sampleLevel): at the level too, their samples
+  //   drawn on those blocks' sides (4 steps): 8 each. 88 + 4 x 8 = 120.
   // - Level 4 is cells over the whole block, 234 triangles (levels 4 and 5 split into the
   //   same cells and draw the border at full resolution), more than level 3: not allowed,
   //   nor is 5. Level 2 draws more than 3 (cells over [4, 28]^2 of 4 quads).
   // So at any error block 0 takes level 3. Blocks 1, 2 and 3 take their one-quad level, 2
-  // triangles each (the root cannot merge over nodata): their sides beside block 0 follow
-  // its strips. Without the cells block 0 would draw its 2 048 full-resolution triangles
-  // less 6; before its strips (session 12) 236, and blocks 1 and 2 fanned over their side
-  // at full resolution, 33 each.
+  // triangles each (the root cannot merge over nodata), those of blocks 1 and 2 cut at the
+  // glided edge's 3 samples between their corners: 5 each. Without the cells block 0 would
+  // draw its 2 048 full-resolution triangles less 6.
   const gmm::Heightfield hf = planeWithOneVoid(3.0f, 2.0f, 16, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
@@ -324,7 +324,7 @@ TEST(Nodata, InteriorVoidCoarsensAroundItsCells)
   EXPECT_EQ(e.levels()[1], 5);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, (4u * 22 + 2 * (4 + 4) + 2 * (1 + 4)) + 3 * 2);
+  EXPECT_EQ(s.triangles, (4u * 22 + 4 * (4 + 4)) + 2 * (2 + 3) + 2);
   expectPlaneDrawnExactly(e, hf, "interior void");
 }
 
@@ -349,16 +349,15 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   // - Strips: the south one's edge on the DEM's border at the level (0 to 32: 4 steps), its
   //   inner line the cells' corners 8, 16, 24, 28, 32 (4 steps), and its east end on the
   //   block's border, j = 0 to 8 at full resolution, fanned from (28, 8): 7 triangles more:
-  //   15. The north one's edge beside the one-quad block 2, its corners (1 step), 4 steps
-  //   inside, 7 at its end: 12. The west one's edge on the DEM's border (4 steps), its
-  //   inner line 24, 16, 8 (2 steps): 6.
-  // 95 triangles. Level 4 has strips on the west side alone, and its cells split as
+  //   15. The north one's edge beside the one-quad block 2 is glided (Tessellate.h,
+  //   BlockConfig::sampleLevel): at the level, on block 2's side (4 steps), 4 steps inside,
+  //   7 at its end: 15. The west one's edge on the DEM's border (4 steps), its inner line
+  //   24, 16, 8 (2 steps): 6.
+  // 98 triangles. Level 4 has strips on the west side alone, and its cells split as
   //   before (the two eastern 16-quad cells alone 55 each): more, not allowed, nor is 5;
   //   level 2 has more cells. Block 1 is block 0's mirror image, its two quads at the void
-  //   split on diagonals through it as well: 95. Blocks 2 and 3 take their one-quad level, 2
-  //   triangles each: their sides beside blocks 0 and 1 follow those blocks' strips. Before
-  //   the strips (session 12): blocks 0 and 1 at level 4, 177 each, and blocks 2 and 3
-  //   fanned over their side at full resolution, 33 each.
+  //   split on diagonals through it as well: 98. Blocks 2 and 3 take their one-quad level, 2
+  //   triangles each, cut at the glided edge's 3 samples between their corners: 5 each.
   const gmm::Heightfield hf = planeWithOneVoid(2.0f, -3.0f, 32, 16);
   gmm::Engine e;
   ASSERT_EQ(e.setHeightfield(hf, 32, 1), "");
@@ -367,7 +366,7 @@ TEST(Nodata, VoidOnABlockBorderCoarsensBothBlocks)
   EXPECT_EQ(e.levels()[1], 3);
   EXPECT_EQ(e.levels()[2], 5);
   EXPECT_EQ(e.levels()[3], 5);
-  EXPECT_EQ(s.triangles, 2u * ((2 * 2 + 2 * 3 + 2 * 26) + 15 + 12 + 6) + 2 * 2);
+  EXPECT_EQ(s.triangles, 2u * ((2 * 2 + 2 * 3 + 2 * 26) + 15 + 15 + 6) + 2 * (2 + 3));
   expectPlaneDrawnExactly(e, hf, "void on a border");
 }
 

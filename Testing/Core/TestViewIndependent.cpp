@@ -25,7 +25,7 @@ TEST(ViewIndependent, VerticalErrorBoundAndMonotoneTriangleCount)
     {
       const gmm::FrameStats st = e.updateForError(maxErr);
       ASSERT_EQ(st.triangles * 3, e.indices().size());
-      const SurfaceSample s = sampleSurface(hf, e.indices());
+      const SurfaceSample s = sampleSurface(hf, e.indices(), drawnHeights(e).data());
       double worst = 0.0;
       std::size_t uncovered = 0;
       for (std::size_t k = 0; k < hf.z.size(); ++k)
