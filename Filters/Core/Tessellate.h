@@ -3,11 +3,17 @@
 //
 // A ring-shaped block (see Levels.h) is made of an inner grid over its inner samples (one
 // drawHStrip per row band) and four side strips between the block's edge and its inner
-// ring. Along each edge the samples of the coarser of the two blocks are used (the edge
-// level); each side strip joins the edge samples to the inner ring by fans (drawFan, any
-// level to any other, difference > 1 included). Both blocks of a shared edge derive its
-// samples from the edge level alone, so they agree and no crack or T-junction can appear.
-// Triangles are counter-clockwise seen from +z in world coordinates.
+// ring. An edge is drawn as the polyline through its samples at the coarser of its two
+// blocks' levels (the edge level). Between two drawn blocks whose finer one is a ring, the
+// edge is glided (BlockConfig::sampleLevel): the finer block's strip is a row of its own
+// cells up to the edge, its samples there drawn on the polyline (EdgeHeights.h), and the
+// coarser block cuts its triangles' sides on the edge at those samples (EdgeCutSink), which
+// lie on them: so a block's cells nest in its next level up to its border. Elsewhere
+// (beside a merged node, a one-quad finer block, a side at full resolution) the strip joins
+// the edge samples to the inner ring by fans (drawFan, any level to any other, difference
+// > 1 included). Both blocks of a shared edge derive its samples from the two levels alone,
+// so they agree and no crack or T-junction can appear. Triangles are counter-clockwise seen
+// from +z in world coordinates.
 //
 // Drawing follows Poyart et al.: each drawn block or merged node draws its area and its
 // east and south connects (drawArea: the main area, drawEastConnect, drawSouthConnect;
