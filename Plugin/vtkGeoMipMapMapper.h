@@ -353,8 +353,8 @@ public:
    * than the default a frame (over a 30 m fractal at PixelError 2, pops change only at 480 m
    * a frame: the mean of the frames' worst 0.73 -> 0.81 px); the first frame measures
    * everything. Measured with
-   * bench_core's jumps (views 30 degrees apart around a 4097^2 DEM, PixelError 1): 7.7 ms
-   * a frame against 18.6 ms with no limit (2.5 ms without geomorphing).
+   * bench_core's jumps (views 30 degrees apart around a 4097^2 DEM, PixelError 1): 9.6 ms
+   * a frame against 26.1 ms with no limit (3.3 ms without geomorphing).
    */
   void SetGeomorphMeasureSamples(vtkIdType samples);
   vtkIdType GetGeomorphMeasureSamples();
