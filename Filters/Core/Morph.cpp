@@ -22,7 +22,8 @@ double blockSurfaceAt(int i0, int i1, int j0, int j1, int level, bool oneQuadAnt
   const long long step = 1LL << level;
   const long long u = (i - i0) / step, v = (j - j0) / step;
   const int ia = static_cast<int>(i0 + u * step), ja = static_cast<int>(j0 + v * step);
-  const int ib = static_cast<int>(std::min<long long>(ia + step, i1)), jb = static_cast<int>(std::min<long long>(ja + step, j1));
+  const int ib = static_cast<int>(std::min<long long>(ia + step, i1));
+  const int jb = static_cast<int>(std::min<long long>(ja + step, j1));
   const long long k = (i1 - i0 + step - 1) / step, L = (j1 - j0 + step - 1) / step; // cells per side
   const bool ring = blockShape(i1 - i0, j1 - j0, level) == BlockShape::Ring;
   const bool anti = ring ? ringCellAntiDiagonal(static_cast<int>(u), static_cast<int>(v), static_cast<int>(k),

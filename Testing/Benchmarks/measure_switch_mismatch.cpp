@@ -182,7 +182,8 @@ int main(int argc, char** argv)
         }
       }
       const std::vector<double> rule = blockSurface(
-        qt, b, was, [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, b, c, edgeTarget, was.edgeLevel, i, jj); });
+        qt, b, was,
+        [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, b, c, edgeTarget, was.edgeLevel, i, jj); });
       const int i0 = qt.colStart[b % qt.blockCols], j0 = qt.rowStart[b / qt.blockCols], w = qt.blockWidth(b) + 1;
       const std::vector<double> nested =
         blockSurface(qt, b, was, [&](int i, int jj) { return after[static_cast<std::size_t>(jj - j0) * w + (i - i0)]; });
@@ -213,7 +214,8 @@ int main(int argc, char** argv)
           nbTarget[side] = c;
         }
         const std::vector<double> nbBefore = blockSurface(
-          qt, nb, nbWas, [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, nb, -1, nbTarget, nbWas.edgeLevel, i, jj); });
+          qt, nb, nbWas,
+          [&](int i, int jj) { return gmm::blockVertexTarget(hf, qt, nb, -1, nbTarget, nbWas.edgeLevel, i, jj); });
         const std::vector<double> nbAfter = blockSurface(qt, nb, nbNow, baseHeights(nb, nbNow));
         neighbourPx.push_back(tau * largestGap(nbBefore, nbAfter) / nbError);
       }

@@ -687,7 +687,8 @@ inline std::vector<double> drawnHeights(const gmm::Engine& e)
   std::vector<double> z(hf.heights(), hf.heights() + hf.sampleCount());
   for (uint32_t v : e.indices())
   {
-    z[v] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, static_cast<int>(v % hf.nx), static_cast<int>(v / hf.nx));
+    const int i = static_cast<int>(v % hf.nx), j = static_cast<int>(v / hf.nx);
+    z[v] = gmm::morphedHeight(hf, e.quadtree(), e.levels(), f, i, j);
   }
   return z;
 }

@@ -126,7 +126,8 @@ TEST(BudgetSelection, DrawnSurfaceWithinReportedError)
         const gmm::FrameStats s = e.update(v, 0.0, budget);
         ASSERT_EQ(e.lastError(), "");
         const double bound = s.maxScreenError;
-        const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, bound, MeasureTransform(), drawnHeights(e).data());
+        const ScreenMeasure m =
+          measureScreenError(e.heightfield(), e.indices(), &v, bound, MeasureTransform(), drawnHeights(e).data());
         EXPECT_EQ(m.uncovered, 0u) << c.name << " " << m.first;
         EXPECT_EQ(m.violations, 0u) << c.name << " budget " << budget << ": measured " << m.maxDist
                                     << " px > reported " << bound << " px; " << m.first;
@@ -212,7 +213,8 @@ TEST(BudgetSelection, NeverWorseThanTauAtTheSameTriangleCount)
           for (const gmm::Engine* e : { &tauMerged, &budgetMerged })
           {
             const double bound = e->stats().maxScreenError;
-            const ScreenMeasure m = measureScreenError(e->heightfield(), e->indices(), &v, bound, MeasureTransform(), drawnHeights(*e).data());
+            const ScreenMeasure m = measureScreenError(
+              e->heightfield(), e->indices(), &v, bound, MeasureTransform(), drawnHeights(*e).data());
             EXPECT_EQ(m.violations, 0u) << c.name << " tau " << tau << ": " << m.first;
             ++measured;
           }
@@ -286,7 +288,8 @@ TEST(BudgetSelection, WarmStartAlongAFlight)
         EXPECT_EQ(replay.indices(), warm.indices()) << c.name << " frame " << k << ": not reproduced";
         if (k % 4 == 0)
         {
-          const ScreenMeasure m = measureScreenError(warm.heightfield(), warm.indices(), &v, w.maxScreenError, MeasureTransform(), drawnHeights(warm).data());
+          const ScreenMeasure m = measureScreenError(
+            warm.heightfield(), warm.indices(), &v, w.maxScreenError, MeasureTransform(), drawnHeights(warm).data());
           EXPECT_EQ(m.violations, 0u) << c.name << " frame " << k << ": " << m.first;
           ++measured;
         }
@@ -324,7 +327,8 @@ TEST(BudgetSelection, TauStopsWhenItComesFirst)
     const gmm::FrameStats s = e.update(v, 2.0, std::size_t(1) << 40);
     EXPECT_FALSE(s.budgetReached);
     EXPECT_LE(s.maxScreenError, 2.0);
-    const ScreenMeasure m = measureScreenError(e.heightfield(), e.indices(), &v, 2.0, MeasureTransform(), drawnHeights(e).data());
+    const ScreenMeasure m =
+      measureScreenError(e.heightfield(), e.indices(), &v, 2.0, MeasureTransform(), drawnHeights(e).data());
     EXPECT_EQ(m.violations, 0u) << m.first;
   }
 }
@@ -359,7 +363,8 @@ TEST(BudgetSelection, FullResolutionWithinBudgetIsFoundAtOnce)
         EXPECT_EQ(b.maxScreenError, 0.0) << c.name;
         EXPECT_LE(b.triangles, f.triangles) << c.name;
         EXPECT_LE(b.budgetTrials, 1) << c.name << ": " << b.budgetTrials << " selections";
-        const ScreenMeasure m = measureScreenError(budgeted.heightfield(), budgeted.indices(), &v, 1e-9, MeasureTransform(), drawnHeights(budgeted).data());
+        const ScreenMeasure m = measureScreenError(
+          budgeted.heightfield(), budgeted.indices(), &v, 1e-9, MeasureTransform(), drawnHeights(budgeted).data());
         EXPECT_EQ(m.violations, 0u) << c.name << ": " << m.first;
         ++frames;
       }

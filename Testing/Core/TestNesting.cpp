@@ -162,7 +162,8 @@ TEST(Nesting, GlidedEdgesNestAtAnyEdgeFactor)
       a.blockTarget[centre] = static_cast<int8_t>(m + 1);
       a.blockT[centre] = 1.0f;
       const std::array<int, 4> nb = qt.blockNeighbours(centre);
-      const std::array<const gmm::MorphEdge*, 4> ea = gmm::blockEdges(qt, a, centre), ec = gmm::blockEdges(qt, c, centre);
+      const std::array<const gmm::MorphEdge*, 4> ea = gmm::blockEdges(qt, a, centre);
+      const std::array<const gmm::MorphEdge*, 4> ec = gmm::blockEdges(qt, c, centre);
       for (int s = 0; s < 4; ++s)
       {
         auto* edgeA = const_cast<gmm::MorphEdge*>(ea[s]);
