@@ -197,7 +197,7 @@ public:
   ///@{
   /**
    * The most full-resolution samples an Update rasterises to measure geomorphing's exact
-   * errors (as vtkGeoMipMapMapper::SetGeomorphMeasureSamples; default 65536, 0: no limit).
+   * errors (as vtkGeoMipMapMapper::SetGeomorphMeasureSamples; default 131072, 0: no limit).
    * After a jump of the camera the blocks past it morph by looser certified bounds until
    * later Updates measure them, so the output depends on the earlier Updates' cameras.
    */

@@ -343,7 +343,7 @@ public:
   ///@{
   /**
    * The most full-resolution samples a frame rasterises to measure geomorphing's exact
-   * errors (default 65536; 0: no limit). A block's morph factor is chosen from the errors
+   * errors (default 131072; 0: no limit). A block's morph factor is chosen from the errors
    * of its parts at its level and its configuration; when the camera jumps, nearly every
    * drawn block changes configuration, and measuring them all was three quarters of the
    * frame's CPU work. Past the limit the nearest blocks are measured first; the others

@@ -68,10 +68,11 @@ struct MorphFrame
 };
 
 
-// FrameSettings::geomorphMeasureSamples' default: about 60 blocks of 32 x 32 quads measured
-// whole. Smooth flights measure a third of it a frame at most (bench_core's, after the
-// first frame); a jump measured 2.8 M samples a frame at 4097^2 (decision record 003).
-constexpr std::size_t kDefaultMorphMeasureSamples = std::size_t{ 1 } << 16;
+// FrameSettings::geomorphMeasureSamples' default: about 120 blocks of 32 x 32 quads
+// measured whole. A jump measured 2.8 M samples a frame at 4097^2; with glided edges an
+// edge's change re-measures the parts beside it, and flights of 0.2 blocks a frame over a
+// 30 m fractal, at half this, deferred enough of them to pop more (decision record 003).
+constexpr std::size_t kDefaultMorphMeasureSamples = std::size_t{ 1 } << 17;
 
 // How a drawn block's part errors stand in a frame (MorphCache::deferred): measured (or
 // proven by the table), bounded by the table above its budget while its measurement waits

@@ -55,16 +55,16 @@ mapper, actor = new_mapper()
 check(mapper.GetGeomorphing(), "geomorphing is on by default")
 # The measuring limit: a count, 0 for none, shared with the filter and printed.
 for obj in (mapper, geomipmap.vtkGeoMipMapFilter()):
-    check(obj.GetGeomorphMeasureSamples() == 65536, f"{obj.GetClassName()}: 65536 samples a frame by default")
+    check(obj.GetGeomorphMeasureSamples() == 131072, f"{obj.GetClassName()}: 131072 samples a frame by default")
     caught = ErrorCatcher(obj)
     obj.SetGeomorphMeasureSamples(-1)
-    check(obj.GetGeomorphMeasureSamples() == 65536 and len(caught.messages) == 1
+    check(obj.GetGeomorphMeasureSamples() == 131072 and len(caught.messages) == 1
           and "GeomorphMeasureSamples -1 must be >= 0 (0: no limit)" in caught.messages[0],
           f"{obj.GetClassName()}: a negative limit is refused with an error ({caught.messages})")
     obj.SetGeomorphMeasureSamples(0)
     check(obj.GetGeomorphMeasureSamples() == 0 and "GeomorphMeasureSamples: 0" in str(obj),
           f"{obj.GetClassName()}: 0 (no limit) is taken and printed")
-mapper.SetGeomorphMeasureSamples(65536)
+mapper.SetGeomorphMeasureSamples(131072)
 ren = vtkRenderer()
 ren.SetBackground(0.0, 0.0, 0.0)
 ren.AddActor(actor)
