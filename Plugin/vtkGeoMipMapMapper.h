@@ -351,10 +351,10 @@ public:
    * table gives none, not at all, and are measured in the frames that follow, each again
    * within the limit. PixelError holds in every frame. A smooth flight measures far less
    * than the default a frame (over a 30 m fractal at PixelError 2, pops change only at 480 m
-   * a frame: the mean of the frames' worst 0.73 -> 0.81 px); the first frame measures
+   * a frame: the mean of the frames' worst 0.71 -> 0.75 px); the first frame measures
    * everything. Measured with
-   * bench_core's jumps (views 30 degrees apart around a 4097^2 DEM, PixelError 1): 9.6 ms
-   * a frame against 26.1 ms with no limit (3.3 ms without geomorphing).
+   * bench_core's jumps (views 30 degrees apart around a 4097^2 DEM, PixelError 1): 9.0 ms
+   * a frame against 22.5 ms with no limit (2.8 ms without geomorphing).
    */
   void SetGeomorphMeasureSamples(vtkIdType samples);
   vtkIdType GetGeomorphMeasureSamples();
