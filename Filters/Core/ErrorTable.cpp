@@ -49,16 +49,6 @@ float partError(const Heightfield& hf, const Quadtree& qt, int block, const Bloc
 // a level-0 strip's triangles cover two or three samples each, all on the lines, and
 // every ring level measured the edge line again for each edge level. Measured at 4097^2,
 // block 32, one thread on one core: the table in 0.70 s against 0.99 s.
-// The edge line of `side` of `block` at `level`: its samples at that level, in the
-// block's counter-clockwise direction (as sidePolylines gives them).
-void edgeLineAt(const Quadtree& qt, int block, int side, int level, EmitScratch& scratch)
-{
-  BlockConfig line;
-  line.level = level;
-  line.edgeLevel.fill(level);
-  sidePolylines(qt, block, line, side, scratch);
-}
-
 // With a glided edge (cfg.sampleLevel[side] >= 0: the block's own cells up to its border,
 // their samples there drawn on the polyline at cfg.edgeLevel[side]), the edge line is that
 // polyline and the strip's triangles are rasterised with those vertices on it.
@@ -69,8 +59,7 @@ float sideStripError(const Heightfield& hf, const Quadtree& qt, int block, const
   float& edge = scratch.edgeLine[side * levels + cfg.edgeLevel[side]];
   if (std::isnan(edge))
   {
-    edgeLineAt(qt, block, side, cfg.edgeLevel[side], scratch.emit);
-    edge = polylineError(hf, scratch.emit.outer);
+    edge = sidePolylineError(hf, qt, block, side, cfg.edgeLevel[side], scratch.emit);
   }
   sidePolylines(qt, block, cfg, side, scratch.emit, cells);
   const std::vector<GridPoint>& outer = scratch.emit.outer;

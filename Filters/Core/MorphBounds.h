@@ -141,12 +141,6 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
   PartErrors& errors, MorphPartScratch& scratch, SidePolylineMemo* polylines = nullptr);
 
-// The largest distance of the samples along `side` of `block` from the side's polyline at
-// `level` (its samples at that level's step, edgeSamples): how far an edge vertex moves
-// toward that polyline, at most (+inf with nodata on the side).
-float sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
-  EmitScratch& scratch);
-
 // sidePolylineError by block, side and level, measured once while the heights are the
 // same: tablePartBounds asks it for every strip of a power-of-two block whose key changed,
 // every block of a frame after a jump of the camera (a fifth of such a frame's morph work

@@ -401,6 +401,31 @@ float polylineError(const Heightfield& hf, const std::vector<GridPoint>& points)
   return roundUpToFloat(worst);
 }
 
+float sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
+  EmitScratch& scratch)
+{
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  const int i0 = qt.colStart[c], i1 = qt.colStart[c + 1], j0 = qt.rowStart[r], j1 = qt.rowStart[r + 1];
+  const bool rows = side == South || side == North;
+  const int line = side == South ? j0 : side == North ? j1 : side == West ? i0 : i1;
+  std::vector<int>& along = scratch.edge;
+  std::vector<GridPoint>& points = scratch.outer;
+  if (rows)
+  {
+    edgeSamples(i0, i1, level, along);
+  }
+  else
+  {
+    edgeSamples(j0, j1, level, along);
+  }
+  points.clear();
+  for (int x : along)
+  {
+    points.push_back(rows ? GridPoint{ x, line } : GridPoint{ line, x });
+  }
+  return polylineError(hf, points);
+}
+
 float stripInteriorError(const Heightfield& hf, const std::vector<GridTriangle>& tris, bool rows,
   int lineA, int lineB, const GlidedLine* glide)
 {

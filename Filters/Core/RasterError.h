@@ -39,6 +39,12 @@ float innerAreaError(const Heightfield& hf, const std::vector<int>& C, const std
 // an edge draws at the samples on it. Nodata anywhere on it, ends included, gives +inf.
 float polylineError(const Heightfield& hf, const std::vector<GridPoint>& points);
 
+// The largest distance of the samples along `side` of `block` from the side's polyline at
+// `level` (its samples at that level's step, edgeSamples): the error of that edge line, and
+// how far an edge vertex moves toward that polyline, at most (+inf with nodata on the side).
+float sidePolylineError(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
+  EmitScratch& scratch);
+
 // A block side whose vertices are drawn on a coarser polyline (a glided edge, EdgeHeights.h):
 // row j = line (rows) or column i = line, its vertices at the polyline through the line's
 // samples at `level` from `first` to `last` (its ends: the block's corners).
