@@ -250,6 +250,95 @@ void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
 }
 } // namespace
 
+namespace
+{
+// kMorphRisePixels as a factor for block part errors `pe` seen at `factor` pixels per unit
+// of height: a vertex moves by at most its target's error plus its drawn error (the
+// triangle inequality through the sample), so a factor step of r moves it at most
+// r (E_target + E_drawn) f on screen. side -1: the block's interior vertices (ring vertices
+// at their targets with any edges); else that side's edge vertices.
+double risePixels(const PartErrors& pe, int side, double factor)
+{
+  double move = 0.0;
+  if (side < 0)
+  {
+    move = pe.inner[1];
+    for (const auto& e : pe.side)
+    {
+      move = std::max({ move, e[1], e[3] });
+    }
+  }
+  else
+  {
+    move = pe.side[side][0] + pe.side[side][2];
+  }
+  const double pixels = move * factor;
+  return pixels > 0.0 ? kMorphRisePixels / pixels : 1.0;
+}
+
+// The pixel rise limit on edges (kMorphRisePixels): an edge drawn with the same level and
+// target as in the last frame rises by at most what its fastest setter rose plus the
+// pixel allowance of the more sensitive of its two blocks. Lowering an edge keeps both
+// strips certified (its factor's bound is linear between held and as fitted).
+void limitEdgeRises(const std::vector<int8_t>& levels, const std::vector<double>& factor, MorphCache& cache,
+  MorphFrame& out)
+{
+  const std::vector<int>& drawn = out.blocks;
+  // Per edge (scratch, entries of this frame's edges only): the factor it may rise to from
+  // its setters (-1: no history), and the pixel allowance on top.
+  std::vector<std::pair<float, float>>& limit = cache.edgeRise;
+  limit.resize(out.vEdges.size() + out.hEdges.size());
+  auto limitOf = [&](const MorphEdge* e) -> std::pair<float, float>& {
+    const std::size_t v = static_cast<std::size_t>(e - out.vEdges.data());
+    return limit[v < out.vEdges.size() ? v : out.vEdges.size() + static_cast<std::size_t>(e - out.hEdges.data())];
+  };
+  for (std::size_t k = 0; k < drawn.size(); ++k)
+  {
+    for (const MorphEdge* e : cache.edges[k])
+    {
+      limitOf(e) = { -1.0f, 1.0f };
+    }
+  }
+  // A side has history when its edge is drawn as in the last frame (level and target).
+  auto hasHistory = [&](std::size_t k, int side) {
+    const MorphEdge& e = *cache.edges[k][side];
+    const MorphEdge& was = cache.slots[cache.drawnSlots[k]].lastEdges[side];
+    return e.t > 0.0f && was.level == e.level && was.target == e.target && cache.morphs[k] && factor[drawn[k]] > 0.0;
+  };
+  for (std::size_t k = 0; k < drawn.size(); ++k)
+  {
+    const int b = drawn[k];
+    const MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
+    for (int side = 0; side < 4; ++side)
+    {
+      if (!hasHistory(k, side))
+      {
+        continue;
+      }
+      const MorphEdge& e = *cache.edges[k][side];
+      const double setterRise = e.level == levels[b] && state.lastLambda >= 0.0
+        ? std::max(0.0, cache.chainAt[k] + static_cast<double>(out.blockT[b]) - state.lastLambda)
+        : 0.0;
+      std::pair<float, float>& l = limitOf(&e);
+      l.first = std::max(l.first, static_cast<float>(state.lastEdges[side].t + setterRise));
+      l.second = std::min(l.second, static_cast<float>(risePixels(state.errors, side, factor[b])));
+    }
+  }
+  for (std::size_t k = 0; k < drawn.size(); ++k)
+  {
+    for (int side = 0; side < 4; ++side)
+    {
+      MorphEdge& e = *cache.edges[k][side];
+      const std::pair<float, float>& l = limitOf(&e);
+      if (l.first >= 0.0f && e.t > l.first + l.second)
+      {
+        e.t = factorDown(static_cast<double>(l.first) + l.second);
+      }
+    }
+  }
+}
+} // namespace
+
 void drawnEdgeFrame(const Quadtree& qt, const std::vector<int8_t>& levels, MorphFrame& out,
   const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs)
 {
@@ -403,7 +492,12 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       const double below = lambdaPrev - chainAt[k];
       if (t > below + kMorphSettlePerFrame)
       {
-        const double rise = slope * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame;
+        // The path rises only as the block recedes (its budget grows); a rise while it
+        // comes nearer is a constraint let go (a neighbour's strip, an edge), taken at
+        // kMorphRisePixels a frame.
+        const double receding = factor[b] < fPrev ? slope * std::log(fPrev / factor[b]) : 0.0;
+        const double rise = std::min(slope * std::fabs(std::log(factor[b] / fPrev)) + kMorphSettlePerFrame,
+          receding + risePixels(pe, -1, factor[b]));
         t = std::min(t, std::max(0.0, below + rise));
       }
     }
@@ -447,6 +541,11 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     }
   }
 
+  if (limited)
+  {
+    limitEdgeRises(levels, factor, cache, out);
+  }
+
   for (std::size_t k = 0; k < drawn.size(); ++k)
   {
     if (!morphs[k])
@@ -475,6 +574,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const bool keep = limited && b < static_cast<int>(factor.size()) && cache.deferred[k] == kMorphMeasured;
     state.lastLambda = keep ? chainAt[k] + out.blockT[b] : -1.0;
     state.lastFactor = keep ? factor[b] : 0.0;
+    for (int side = 0; side < 4; ++side)
+    {
+      state.lastEdges[side] = keep ? *cache.edges[k][side] : MorphEdge();
+    }
   }
 }
 

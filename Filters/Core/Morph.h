@@ -96,6 +96,9 @@ struct MorphBlockState
   // in the last frame.
   double lastLambda = -1.0;
   double lastFactor = 0.0;
+  // The pixel rise limit's history (MorphRamp.h, kMorphRisePixels): per side, the edge as
+  // drawn in the last frame (its level, target and factor).
+  std::array<MorphEdge, 4> lastEdges{};
   int block = -1;
   uint32_t frame = 0; // the last frame (MorphCache::frame) that drew it
 };
@@ -140,6 +143,9 @@ struct MorphCache
   std::vector<int> chainAt;             // per drawn block: chainIndex of its level
   std::vector<double> budgets;          // per drawn block: tau / its factor, -1 if it does not morph
   std::vector<uint8_t> deferred;        // per drawn block: kMorphMeasured, kMorphBounded or kMorphHeld
+  // Per edge (vEdges, then hEdges; scratch of the pixel rise limit): what its factor may
+  // rise to from its setters, and the pixel allowance on top.
+  std::vector<std::pair<float, float>> edgeRise;
 
   // The rise limit's history of block b: its drawn continuous level in the last frame, or
   // -1 when it was not drawn or that frame did not follow the path.

@@ -50,6 +50,13 @@ double rampSlope(double range);
 // a strip's cap on it; lowering a factor always keeps the certificate.
 constexpr double kMorphSettlePerFrame = 0.02;
 
+// The rate limit in pixels: beyond what its path rose since the last frame (or, for an
+// edge, what the block setting it rose), a block's or an edge's factor rises by at most as
+// much as moves its vertices this far on screen in a frame. A factor held down by a
+// constraint that a neighbour's switch releases (a strip's fit, an edge's setter) would
+// otherwise jump to the path's value in one frame.
+constexpr double kMorphRisePixels = 0.1;
+
 // The path's outcome for the blocks a frame selected, per block (stale for the others).
 struct MorphRamp
 {

@@ -476,15 +476,16 @@ TEST(MorphRamp, FlightCertifiedAndSmooth)
   EXPECT_LE(path.meanPop, 0.6 * plain.meanPop);
   EXPECT_GE(path.triangles, plain.triangles); // the path is never coarser than needed
   // The mapper's defaults: range 2 (less lag, so less smoothing, for fewer triangles) and
-  // merges on the path (measured 0.552 px worst, mean 0.74x the plain factors', 4 % more
-  // triangles than them against 9 % at range 3, with merges off).
+  // merges on the path (4 % more triangles than the plain factors against 9 % at range 3).
   const bool mergesByDefault = gmm::FrameSettings().geomorphMerges;
   const FlightOutcome byDefault = fly(hf, 32, tau, gmm::kDefaultMorphRange, 80, 0.02, mergesByDefault);
   std::printf("[ ramp ] the same with the mapper's defaults (range %g, merges on the path %d): worst pop %.3f "
               "px, mean of frame worst %.3f, measured error %.3f px, triangles %zu\n",
     gmm::kDefaultMorphRange, mergesByDefault, byDefault.worstPop, byDefault.meanPop, byDefault.worstError,
     byDefault.triangles);
-  EXPECT_LE(byDefault.worstPop, 0.6);
+  // Factors that a neighbour's switch lets go rise at kMorphRisePixels a frame (MorphRamp.h):
+  // measured 0.166 px, 0.258 px when they jumped to their new value at once.
+  EXPECT_LE(byDefault.worstPop, 0.2);
   EXPECT_LE(byDefault.worstPop, 0.5 * plain.worstPop);
   EXPECT_LE(byDefault.meanPop, 0.8 * plain.meanPop);
   EXPECT_LE(byDefault.worstError, tau);
@@ -544,7 +545,10 @@ TEST(MorphRamp, MergesOnThePathDoNotPop)
     gmm::kDefaultMorphRange, byDefault.worstPop, freeByDefault.worstPop, byDefault.meanPop, freeByDefault.meanPop,
     byDefault.triangles, freeByDefault.triangles);
   EXPECT_GT(freeByDefault.worstPop, 1.0);
-  EXPECT_LE(byDefault.worstPop, 0.7 * freeByDefault.worstPop); // measured 0.64 against 1.09 px
+  EXPECT_LE(byDefault.worstPop, 0.7 * freeByDefault.worstPop);
+  // Issue #51's bound, 0.3 px at tau 2 with the defaults, through merges and splits (measured
+  // 0.267 px).
+  EXPECT_LE(byDefault.worstPop, 0.3);
   EXPECT_LE(byDefault.worstError, tau);
 }
 
