@@ -300,8 +300,9 @@ public:
   /**
    * How gradually geomorphing changes levels (default 2): while geomorphing, a block moves
    * through its levels by at most one level per this factor of change in its distance, and
-   * its morph factor never rises faster than that from one frame to the next, so that no
-   * frame pops where two levels' errors are close or a neighbour's switch frees a block.
+   * its morph factor never rises faster than that from one frame to the next (nor, where a
+   * neighbour's switch frees a block or an edge, by more than 0.1 px of vertex motion a
+   * frame), so that no frame pops where two levels' errors are close.
    * Larger is smoother where levels do not nest (a block's side strips, merged nodes; inside
    * a block they do) and draws more triangles, since blocks stay finer than PixelError needs
    * while they glide. Measured against no geomorphing at PixelError 2 (measure_popping.py,
