@@ -19,7 +19,8 @@ void FrameDriver::setTerrain(std::shared_ptr<const Terrain> terrain)
   morphCache_ = MorphCache();
   morph_ = MorphFrame();
   frame_ = Frame();
-  hasSelection_ = cameraSelection_ = morphCurrent_ = false;
+  hasSelection_ = cameraSelection_ = false;
+  morphHeld_ = MorphHeld::Nothing;
   warmStartTau_ = 0.0;
 }
 
@@ -33,7 +34,7 @@ const Frame& FrameDriver::update(const View& view, const FrameSettings& settings
   const FrameStats& stats = engine_.update(view, settings.pixelError, settings.triangleBudget, start);
   hasSelection_ = engine_.lastError().empty();
   cameraSelection_ = hasSelection_;
-  morphCurrent_ = false;
+  morphHeld_ = MorphHeld::Nothing;
   if (hasSelection_ && settings.triangleBudget > 0)
   {
     warmStartTau_ = stats.budgetTau;
@@ -47,7 +48,8 @@ const Frame& FrameDriver::updateForError(double maxError, const FrameSettings& s
   engine_.setHeightScale(settings.heightScale);
   engine_.updateForError(maxError);
   hasSelection_ = engine_.lastError().empty();
-  cameraSelection_ = morphCurrent_ = false;
+  cameraSelection_ = false;
+  morphHeld_ = MorphHeld::Nothing;
   return finish(false);
 }
 
@@ -66,13 +68,13 @@ void FrameDriver::morphSelection(const FrameSettings& settings)
   // Geomorphing needs a camera's projection factors; a frame that draws nothing needs no
   // factors.
   const bool morphed = settings.geomorphing && hasSelection_ && cameraSelection_ && engine_.stats().triangles > 0;
-  if (morphed && !morphCurrent_)
+  if (morphed && morphHeld_ != MorphHeld::Factors)
   {
     morphCache_.measureLimit = settings.geomorphMeasureSamples;
     computeMorph(engine_.heightfield(), engine_.quadtree(), engine_.levels(), engine_.pixelFactors(),
       morphErrorBudget(engine_.stats(), settings.pixelError), morphCache_, morph_, engine_.morphRamp(),
       &engine_.drawnBlocks(), &engine_.drawnConfigs(), &engine_.errorTable());
-    morphCurrent_ = true;
+    morphHeld_ = MorphHeld::Factors;
   }
   finish(morphed);
 }
@@ -87,11 +89,11 @@ const Frame& FrameDriver::finish(bool morphed)
   {
     frame_.stats.maxScreenError = std::max(frame_.stats.maxScreenError, morph_.maxBoundPixels);
   }
-  else if (hasSelection_ && frame_.error.empty())
+  else if (hasSelection_ && frame_.error.empty() && morphHeld_ != MorphHeld::EdgeLevels)
   {
     // Unmorphed, the frame's glided edges still draw their samples on their polylines.
     drawnEdgeFrame(engine_.quadtree(), engine_.levels(), morph_, &engine_.drawnBlocks(), &engine_.drawnConfigs());
-    morphCurrent_ = false;
+    morphHeld_ = MorphHeld::EdgeLevels;
   }
   return frame_;
 }

@@ -129,7 +129,15 @@ private:
   Frame frame_;
   bool hasSelection_ = false;
   bool cameraSelection_ = false; // the selection was made for a camera (factors exist)
-  bool morphCurrent_ = false;    // morph_ holds the factors of the current selection
+  // What morph_ holds for the current selection: nothing yet, its morph factors, or its
+  // unmorphed edge levels (drawnEdgeFrame), so that a kept frame computes neither again.
+  enum class MorphHeld
+  {
+    Nothing,
+    Factors,
+    EdgeLevels
+  };
+  MorphHeld morphHeld_ = MorphHeld::Nothing;
   double warmStartTau_ = 0.0;
 };
 
