@@ -48,15 +48,23 @@ inline int borderSideOf(int i0, int i1, int j0, int j1, int i, int j)
   return onH ? (j == j0 ? South : North) : (i == i0 ? West : East);
 }
 
+// Height of the polyline at `level` through the samples [first, last] of a grid line (row
+// `line` when `rows`, else column `line`), at sample s along it.
+inline double linePolylineAt(const Heightfield& hf, bool rows, int line, int first, int last, int level, int s)
+{
+  if (rows)
+  {
+    return polylineAt(first, last, level, s, [&hf, line](int k) { return double(hf.height(k, line)); });
+  }
+  return polylineAt(first, last, level, s, [&hf, line](int k) { return double(hf.height(line, k)); });
+}
+
 // Height of the polyline of `side` of block rectangle [i0, i1] x [j0, j1] at `level`, at
 // sample (i, j) of that side.
 inline double sidePolylineAt(const Heightfield& hf, int i0, int i1, int j0, int j1, int side, int level, int i, int j)
 {
-  if (side == South || side == North)
-  {
-    return polylineAt(i0, i1, level, i, [&hf, j](int s) { return double(hf.height(s, j)); });
-  }
-  return polylineAt(j0, j1, level, j, [&hf, i](int s) { return double(hf.height(i, s)); });
+  return side == South || side == North ? linePolylineAt(hf, true, j, i0, i1, level, i)
+                                        : linePolylineAt(hf, false, i, j0, j1, level, j);
 }
 
 // The height a block drawn with edge levels `edgeLevel` gives sample (i, j) before

@@ -61,8 +61,7 @@ double glidedHeight(const Heightfield& hf, const GlidedLine& g, GridPoint v, dou
   {
     return own;
   }
-  return g.rows ? polylineAt(g.first, g.last, g.level, v.i, [&hf, &g](int s) { return double(hf.height(s, g.line)); })
-                : polylineAt(g.first, g.last, g.level, v.j, [&hf, &g](int s) { return double(hf.height(g.line, s)); });
+  return linePolylineAt(hf, g.rows, g.line, g.first, g.last, g.level, g.rows ? v.i : v.j);
 }
 
 // Error of one triangle over the samples it covers (edges included), in grid space.
