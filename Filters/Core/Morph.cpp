@@ -2,6 +2,7 @@
 
 #include "EdgeHeights.h"
 #include "Levels.h"
+#include "MorphFactors.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,22 +35,6 @@ double blockSurfaceAt(int i0, int i1, int j0, int j1, int level, bool oneQuadAnt
   return splitQuadHeight(cornerAt(ia, ja), cornerAt(ib, ja), cornerAt(ia, jb), cornerAt(ib, jb), fx, fy, anti);
 }
 
-double clamp01(double t)
-{
-  return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; // NaN -> 0
-}
-
-// Factors are stored as float (what the shader reads): rounded down, never above the
-// factor the certificate allows.
-float factorDown(double t)
-{
-  float f = static_cast<float>(clamp01(t));
-  if (static_cast<double>(f) > t)
-  {
-    f = std::nextafter(f, 0.0f);
-  }
-  return f;
-}
 
 } // namespace
 
@@ -111,16 +96,7 @@ double diagonalReach(const double e[4], double limit)
 
 namespace
 {
-// Largest x in [0, 1] with a + x (b - a) <= limit, given a <= limit (the linear bound at 0
-// holds): how far a linear bound may be pushed.
-double linearReach(double a, double b, double limit)
-{
-  if (b <= limit)
-  {
-    return 1.0;
-  }
-  return b > a ? clamp01((limit - a) / (b - a)) : 0.0;
-}
+
 
 // blockEdges of a frame being written.
 std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int block)
@@ -250,94 +226,6 @@ void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
 }
 } // namespace
 
-namespace
-{
-// kMorphRisePixels as a factor for block part errors `pe` seen at `factor` pixels per unit
-// of height: a vertex moves by at most its target's error plus its drawn error (the
-// triangle inequality through the sample), so a factor step of r moves it at most
-// r (E_target + E_drawn) f on screen. side -1: the block's interior vertices (ring vertices
-// at their targets with any edges); else that side's edge vertices.
-double risePixels(const PartErrors& pe, int side, double factor)
-{
-  double move = 0.0;
-  if (side < 0)
-  {
-    move = pe.inner[1];
-    for (const auto& e : pe.side)
-    {
-      move = std::max({ move, e[1], e[3] });
-    }
-  }
-  else
-  {
-    move = pe.side[side][0] + pe.side[side][2];
-  }
-  const double pixels = move * factor;
-  return pixels > 0.0 ? kMorphRisePixels / pixels : 1.0;
-}
-
-// The pixel rise limit on edges (kMorphRisePixels): an edge drawn with the same level and
-// target as in the last frame rises by at most what its fastest setter rose plus the
-// pixel allowance of the more sensitive of its two blocks. Lowering an edge keeps both
-// strips certified (its factor's bound is linear between held and as fitted).
-void limitEdgeRises(const std::vector<int8_t>& levels, const std::vector<double>& factor, MorphCache& cache,
-  MorphFrame& out)
-{
-  const std::vector<int>& drawn = out.blocks;
-  // Per edge (scratch, entries of this frame's edges only): the factor it may rise to from
-  // its setters (-1: no history), and the pixel allowance on top.
-  std::vector<std::pair<float, float>>& limit = cache.edgeRise;
-  limit.resize(out.vEdges.size() + out.hEdges.size());
-  auto limitOf = [&](const MorphEdge* e) -> std::pair<float, float>& {
-    const std::size_t v = static_cast<std::size_t>(e - out.vEdges.data());
-    return limit[v < out.vEdges.size() ? v : out.vEdges.size() + static_cast<std::size_t>(e - out.hEdges.data())];
-  };
-  for (std::size_t k = 0; k < drawn.size(); ++k)
-  {
-    for (const MorphEdge* e : cache.edges[k])
-    {
-      limitOf(e) = { -1.0f, 1.0f };
-    }
-  }
-  // A side has history when its edge is drawn as in the last frame (level and target).
-  auto hasHistory = [&](std::size_t k, int side) {
-    const MorphEdge& e = *cache.edges[k][side];
-    const MorphEdge& was = cache.slots[cache.drawnSlots[k]].lastEdges[side];
-    return e.t > 0.0f && was.level == e.level && was.target == e.target && cache.morphs[k] && factor[drawn[k]] > 0.0;
-  };
-  for (std::size_t k = 0; k < drawn.size(); ++k)
-  {
-    const int b = drawn[k];
-    const MorphBlockState& state = cache.slots[cache.drawnSlots[k]];
-    for (int side = 0; side < 4; ++side)
-    {
-      if (!hasHistory(k, side))
-      {
-        continue;
-      }
-      const MorphEdge& e = *cache.edges[k][side];
-      const double setterRise = e.level == levels[b] && state.lastLambda >= 0.0
-        ? std::max(0.0, cache.chainAt[k] + static_cast<double>(out.blockT[b]) - state.lastLambda)
-        : 0.0;
-      std::pair<float, float>& l = limitOf(&e);
-      l.first = std::max(l.first, static_cast<float>(state.lastEdges[side].t + setterRise));
-      l.second = std::min(l.second, static_cast<float>(risePixels(state.errors, side, factor[b])));
-    }
-  }
-  for (std::size_t k = 0; k < drawn.size(); ++k)
-  {
-    for (int side = 0; side < 4; ++side)
-    {
-      MorphEdge& e = *cache.edges[k][side];
-      const std::pair<float, float>& l = limitOf(&e);
-      if (l.first >= 0.0f && e.t > l.first + l.second)
-      {
-        e.t = factorDown(static_cast<double>(l.first) + l.second);
-      }
-    }
-  }
-}
-} // namespace
 
 void drawnEdgeFrame(const Quadtree& qt, const std::vector<int8_t>& levels, MorphFrame& out,
   const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs)
@@ -461,7 +349,9 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const PartErrors& pe = state.errors;
     morphs[k] = 1;
     const double x = budget[k];
-    double t = pe.innerFrozen ? 0.0 : linearReach(pe.inner[0], pe.inner[1], x);
+    // The inner grid with its edges held: a block factor that does not fit once they move
+    // is lowered below, after the edges are fitted.
+    double t = pe.innerFrozen ? 0.0 : innerReach(pe, { 0.0, 0.0, 0.0, 0.0 }, x);
     for (int side = 0; side < 4; ++side)
     {
       const double* e = pe.side[side];
@@ -504,43 +394,14 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     out.blockT[b] = factorDown(t);
   }
 
-  // Edge factors: the largest factor of the blocks setting the edge, lowered until both
-  // sides' strips fit their budgets with their blocks' factors.
-  for (std::size_t k = 0; k < drawn.size(); ++k)
+  // Edge factors, then the blocks and edges fitted to each other (MorphFactors.h); the rules
+  // that read the last frame's factors only on the path, which keeps that history.
+  fitEdgeFactors(levels, cache, out);
+  if (limited)
   {
-    const int b = drawn[k];
-    for (MorphEdge* e : drawnEdges[k])
-    {
-      if (e->target >= 0 && e->level == levels[b])
-      {
-        e->t = std::max(e->t, out.blockT[b]); // owner factor, lowered below
-      }
-    }
+    yieldToCoarserEdges(qt, levels, factor, cache, out);
   }
-  for (std::size_t k = 0; k < drawn.size(); ++k)
-  {
-    const int b = drawn[k];
-    const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
-    const PartErrors& pe = cache.slots[cache.drawnSlots[k]].errors;
-    for (int side = 0; side < 4; ++side)
-    {
-      MorphEdge& e = *edges[side];
-      if (e.t <= 0.0f)
-      {
-        continue;
-      }
-      if (!morphs[k] || pe.sideFrozen[side])
-      {
-        e.t = 0.0f; // a block that does not morph holds its edges
-        continue;
-      }
-      const double tb = out.blockT[b];
-      const double* q = pe.side[side];
-      const double at0 = stripBound(q, 0.0, tb), at1 = stripBound(q, 1.0, tb);
-      e.t = std::min(e.t, factorDown(linearReach(at0, at1, budget[k])));
-    }
-  }
-
+  fitInnerGridsToEdges(levels, cache, out);
   if (limited)
   {
     limitEdgeRises(levels, factor, cache, out);
@@ -555,8 +416,12 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     const int b = drawn[k];
     const PartErrors& pe = cache.slots[cache.drawnSlots[k]].errors;
     const double tb = out.blockT[b];
-    double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1];
     const std::array<MorphEdge*, 4>& edges = drawnEdges[k];
+    double bound = (1.0 - tb) * pe.inner[0] + tb * pe.inner[1]; // every edge at its worst
+    if (bound * factor[b] > out.maxBoundPixels)
+    {
+      bound = innerBound(pe, edgeFactors(edges), tb); // at the edges' factors: no larger
+    }
     for (int side = 0; side < 4; ++side)
     {
       bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));

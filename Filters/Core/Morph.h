@@ -146,6 +146,7 @@ struct MorphCache
   // Per edge (vEdges, then hEdges; scratch of the pixel rise limit): what its factor may
   // rise to from its setters, and the pixel allowance on top.
   std::vector<std::pair<float, float>> edgeRise;
+  std::vector<float> edgeWas; // per drawn block and side: its edge's factor before a refit
 
   // The rise limit's history of block b: its drawn continuous level in the last frame, or
   // -1 when it was not drawn or that frame did not follow the path.
@@ -183,6 +184,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   const std::vector<double>& factor, double tau, MorphCache& cache, MorphFrame& out,
   const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr,
   const std::vector<BlockConfig>* drawnConfigs = nullptr, const ErrorTable* table = nullptr);
+
 
 // computeMorph's first pass over the drawn blocks that morph (out.blocks[k] with a target
 // and cache.budgets[k] >= 0; cache.drawnSlots, configs and edges filled, and the edges'

@@ -2,6 +2,7 @@
 
 #include "EdgeHeights.h"
 #include "Morph.h"
+#include "RasterError.h"
 
 #include <algorithm>
 #include <cmath>
@@ -125,6 +126,32 @@ inline double worstOverEdges(double x, const double a[4], int own)
   return std::max(std::fabs(x + up), std::fabs(x + down));
 }
 
+// The inner grid's errors at each corner of the edges' factors (PartErrors::innerAt), as
+// measured: the largest |x| over samples whose target moves with no edge, and per mask the
+// largest |x + the sum of a[k] over its sides| over the others.
+struct InnerCorners
+{
+  double still = 0.0;
+  double at[16] = {};
+  void add(double x, const double* a)
+  {
+    if (!a)
+    {
+      still = std::max(still, std::fabs(x));
+      return;
+    }
+    double sum[16];
+    sum[0] = x;
+    at[0] = std::max(at[0], std::fabs(x));
+    for (int mask = 1; mask < 16; ++mask)
+    {
+      const int low = mask & -mask;
+      sum[mask] = sum[mask ^ low] + a[low == 1 ? 0 : low == 2 ? 1 : low == 4 ? 2 : 3];
+      at[mask] = std::max(at[mask], std::fabs(sum[mask]));
+    }
+  }
+};
+
 // One triangle's contribution to a part's four corner errors: at every sample it covers,
 // its drawn height S, the interpolated displacements of its edge (dE) and ring (dR)
 // vertices, and of its ring vertices' targets with each side's edge (dR_k, from `c`: 4 per
@@ -135,7 +162,7 @@ inline double worstOverEdges(double x, const double a[4], int own)
 // to be finite (a block without nodata), so no sample is tested.
 bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, const double h[3],
   const double d[3], const double* const c[3], const bool onEdge[3], int own, bool verticesDone, bool finiteSamples,
-  double err[4])
+  double err[4], InnerCorners* corners)
 {
   if (area == 0)
   {
@@ -189,10 +216,18 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
         double a[4];
         couplingAt(l, a);
         e1 = std::max(e1, worstOverEdges(s + dR, a, own));
+        if (corners)
+        {
+          corners->add(s + dR, a);
+        }
       }
       else
       {
         e1 = std::max(e1, std::fabs(s + dR));
+        if (corners)
+        {
+          corners->add(s + dR, nullptr);
+        }
       }
       return true;
     });
@@ -226,11 +261,19 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
       const double withOwn = own >= 0 ? a[own] : 0.0;
       err[1] = std::max(err[1], worstOverEdges(s + dR, a, own));
       err[3] = std::max(err[3], worstOverEdges(s + dE + dR + withOwn, a, own));
+      if (corners)
+      {
+        corners->add(s + dR, a);
+      }
     }
     else
     {
       err[1] = std::max(err[1], std::fabs(s + dR));
       err[3] = std::max(err[3], std::fabs(s + dE + dR));
+      if (corners)
+      {
+        corners->add(s + dR, nullptr);
+      }
     }
     return true;
   });
@@ -241,9 +284,14 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
 // sample (0 but on a glided edge, EdgeHeights.h), moved by its own displacement d with the
 // edge factor on the border, with the ring factor inside (its target moving with the
 // edges by c, 4 per side, null when all 0).
-void addVertexContribution(double s, double d, const double* c, bool onEdge, int own, double err[4])
+void addVertexContribution(double s, double d, const double* c, bool onEdge, int own, double err[4],
+  InnerCorners* corners)
 {
   err[0] = std::max(err[0], std::fabs(s));
+  if (corners && !onEdge)
+  {
+    corners->add(s + d, c);
+  }
   if (onEdge)
   {
     err[1] = std::max(err[1], std::fabs(s));
@@ -262,6 +310,55 @@ void addVertexContribution(double s, double d, const double* c, bool onEdge, int
   err[3] = std::max(err[3], worstOverEdges(s + d + (own >= 0 ? c[own] : 0.0), c, own));
 }
 } // namespace
+
+namespace
+{
+// The multilinear interpolation of errors.innerAt at the edges' factors te: one side at a
+// time (bit s of a mask is side s), halving the corners each time.
+double innerAtEdges(const PartErrors& errors, const std::array<double, 4>& te)
+{
+  if (te[0] == 0.0 && te[1] == 0.0 && te[2] == 0.0 && te[3] == 0.0)
+  {
+    return errors.innerAt[0]; // the edges held
+  }
+  if (errors.innerAt[0] == errors.innerAt[15])
+  {
+    return errors.innerAt[0]; // no edge moves the inner grid's targets (monotone corners)
+  }
+  double v[8];
+  for (int m = 0; m < 8; ++m)
+  {
+    v[m] = (1.0 - te[0]) * errors.innerAt[2 * m] + te[0] * errors.innerAt[2 * m + 1];
+  }
+  for (int side = 1, count = 4; side < 4; ++side, count /= 2)
+  {
+    for (int m = 0; m < count; ++m)
+    {
+      v[m] = (1.0 - te[side]) * v[2 * m] + te[side] * v[2 * m + 1];
+    }
+  }
+  return v[0];
+}
+} // namespace
+
+double innerBound(const PartErrors& errors, const std::array<double, 4>& te, double tb)
+{
+  return (1.0 - tb) * errors.inner[0] + tb * innerAtEdges(errors, te);
+}
+
+double innerReach(const PartErrors& errors, const std::array<double, 4>& te, double limit)
+{
+  const double a = errors.inner[0], b = innerAtEdges(errors, te);
+  if (!(a <= limit))
+  {
+    return 0.0;
+  }
+  if (b <= limit)
+  {
+    return 1.0;
+  }
+  return std::min(std::max((limit - a) / (b - a), 0.0), 1.0);
+}
 
 PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, MorphPartScratch& scratch)
@@ -352,6 +449,8 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     double err[4] = { 0.0, 0.0, 0.0, 0.0 };
     bool finite = true;
     const int own = p - 1; // the strip's side, -1 for the inner grid
+    InnerCorners innerCorners;
+    InnerCorners* corners = p == 0 ? &innerCorners : nullptr;
     scratch.measured.begin(vertices);
     for (const GridTriangle& t : tris)
     {
@@ -388,7 +487,8 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
         {
           if (scratch.measured.mark(v[k]))
           {
-            addVertexContribution(h[k] - hf.height(t.v[k].i, t.v[k].j), d[k], coupling[k], onEdge[k], own, err);
+            addVertexContribution(
+              h[k] - hf.height(t.v[k].i, t.v[k].j), d[k], coupling[k], onEdge[k], own, err, corners);
           }
         }
         if (area == 1)
@@ -397,7 +497,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
         }
       }
       if (!rasterise(hf, t, signedArea, h, d, coupling, onEdge, own, exactAtVertices, finiteSamples && finiteVertices,
-            err))
+            err, corners))
       {
         finite = false;
         break;
@@ -407,6 +507,20 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     {
       out.inner[0] = err[0];
       out.inner[1] = err[1];
+      for (int mask = 0; mask < 16; ++mask)
+      {
+        out.innerAt[mask] = roundUpToFloat(std::max(innerCorners.still, innerCorners.at[mask]));
+      }
+      for (int side = 0; side < 4; ++side) // non-decreasing: each the largest over its sub-masks
+      {
+        for (int mask = 0; mask < 16; ++mask)
+        {
+          if (mask & (1 << side))
+          {
+            out.innerAt[mask] = std::max(out.innerAt[mask], out.innerAt[mask ^ (1 << side)]);
+          }
+        }
+      }
       out.innerFrozen = !finite;
     }
     else
@@ -450,6 +564,7 @@ bool InnerErrorMemo::take(
   const Entry& e = this->entries[at];
   errors.inner[0] = e.errors[0];
   errors.inner[1] = e.errors[1];
+  std::copy(std::begin(e.errorsAt), std::end(e.errorsAt), errors.innerAt);
   errors.innerFrozen = e.frozen;
   ++this->answered;
   return true;
@@ -470,6 +585,7 @@ void InnerErrorMemo::keep(
   Entry& e = this->entries[static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(level)];
   e.errors[0] = errors.inner[0];
   e.errors[1] = errors.inner[1];
+  std::copy(std::begin(errors.innerAt), std::end(errors.innerAt), e.errorsAt);
   e.target = static_cast<int8_t>(target);
   e.frozen = errors.innerFrozen;
   e.edges = edges;

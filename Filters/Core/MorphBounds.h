@@ -15,8 +15,9 @@
 // corner errors E_er (e, r in {0, 1}) are the maxima over the part's samples of
 // |S + e dE + r (dR + e dR_e + sum t_k dR_k) - h| with each t_k at its worst (0 or 1), and
 // the strip's bound at (t_e, t_b) their bilinear interpolation. The inner grid has no edge
-// vertex: its bound is (1 - t_b) E_0 + t_b E_1, every side's t_k at its worst. These are
-// exact maxima over samples, not estimates.
+// vertex: its bound is (1 - t_b) E_0 + t_b E_1, every side's t_k at its worst, or with
+// E_1 interpolated at the edges' factors from its errors at every corner of them
+// (PartErrors::innerAt). These are exact maxima over samples, not estimates.
 #pragma once
 
 #include "ErrorTable.h"
@@ -35,6 +36,12 @@ namespace gmm
 struct PartErrors
 {
   double inner[2] = { 0.0, 0.0 }; // ring vertices as drawn / at their targets
+  // innerAt[mask]: the inner grid with its ring vertices at their targets and side s's edge
+  // at its target where bit s of `mask` is set, at its base heights elsewhere (so
+  // innerAt[0] has every edge held and innerAt[15] is inner[1]), rounded up to float and
+  // made non-decreasing in the mask (each the largest over its sub-masks): innerBound then
+  // never grows when an edge's factor is lowered.
+  float innerAt[16] = {};
   // side[s][e * 2 + r]: strip s with edge vertices (e) and ring vertices (r) as drawn (0)
   // or at their targets (1).
   double side[4][4] = {};
@@ -51,6 +58,14 @@ inline double stripBound(const double e[4], double te, double tb)
 {
   return (1.0 - te) * ((1.0 - tb) * e[0] + tb * e[1]) + te * ((1.0 - tb) * e[2] + tb * e[3]);
 }
+
+// Bound of the inner grid at block factor tb with the edges' factors te (by side): the
+// multilinear interpolation of innerAt at te (the drawn height is affine in the edge factors,
+// so the error is convex in them and at most that interpolation), then linear in tb from
+// inner[0].
+double innerBound(const PartErrors& errors, const std::array<double, 4>& te, double tb);
+// The largest tb in [0, 1] with innerBound(errors, te, t) <= limit for every t in [0, tb].
+double innerReach(const PartErrors& errors, const std::array<double, 4>& te, double limit);
 
 // Largest t in [0, 1] with stripBound(e, t, t) <= limit on all of [0, t] (0 when it does
 // not hold at 0): how far a block and an edge it sets may morph together.
@@ -168,8 +183,8 @@ unsigned boundedPartsOver(const PartErrors& errors, double budget);
 // to a level with the same edges, whatever the frames between (a jump of the camera,
 // another tau, a stretch out of view), takes them instead of rasterising its inner grid
 // again: at 4097^2 and tau 1 a frame whose blocks all change configuration spent 45 % of
-// its morph time there. A block's entries (one per level below its top, 32 bytes each) are
-// made the first time it morphs, so memory follows the blocks drawn (at most 42 MB at
+// its morph time there. A block's entries (one per level below its top, 96 bytes each) are
+// made the first time it morphs, so memory follows the blocks drawn (at most 126 MB at
 // 16385^2 and block 32, once every block has morphed).
 // What of a block's edges its inner grid's errors read (blockVertexTarget): per side, its
 // level where coarser than the target (-1 elsewhere), then its target level (-1: still).
@@ -195,6 +210,7 @@ private:
   struct Entry
   {
     double errors[2] = { 0.0, 0.0 };
+    float errorsAt[16] = {}; // PartErrors::innerAt
     int8_t target = -2; // -2: not measured
     bool frozen = false;
     InnerEdges edges{};

@@ -106,6 +106,7 @@ unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Q
   {
     errors.inner[0] = own;
     errors.inner[1] = innerAtTarget;
+    std::fill(std::begin(errors.innerAt), std::end(errors.innerAt), roundUpToFloat(innerAtTarget)); // any edges
     errors.innerFrozen = false;
     bounded |= 1u;
     fit |= std::max(own, innerAtTarget) <= budget ? 1u : 0u;

@@ -12,12 +12,12 @@
 // A switch whose morphed surface at factor 1 were the next level's would move nothing, so
 // the switch and neighbour classes measure where the levels do not nest, which geomorphing's
 // level path hides by switching blocks far below their budget (benchmarks-core.md, session
-// 26). The flight, terrain and camera are measure_popping.py's (fractal n x n, 30 m, seed 1;
-// a straight line across the middle, 250 m above the highest sample, 20 degrees down,
-// 1280 x 720, fov 50), and its worst pop, mean of frames' worst and triangles come out the
+// 26). The flight, terrain and camera are measure_popping.py's (fractal n x n, 30 m, seed 1
+// unless --seed; a straight line across the middle, 250 m above the highest sample, 20
+// degrees down, 1280 x 720, fov 50), and its worst pop, mean of frames' worst and triangles come out the
 // same here (the screen measure is Testing/Core's, independent of the engine's bound).
 //
-//   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--step 0.04]
+//   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--seed 1] [--step 0.04]
 //                      [--frames 120] [--threshold 0.3] [--no-merges] [--measure-samples N]
 //
 // --range 0 turns geomorphing off (levels switch at once); --no-merges lets merges skip the
@@ -100,6 +100,7 @@ int main(int argc, char** argv)
   const int n = static_cast<int>(argOr(argc, argv, "--n", 1025));
   const double stepBlocks = argOr(argc, argv, "--step", 0.04);
   const int frames = static_cast<int>(argOr(argc, argv, "--frames", 120));
+  const int seed = static_cast<int>(argOr(argc, argv, "--seed", 1));
   const double threshold = argOr(argc, argv, "--threshold", 0.3);
   const bool merges = gmm::FrameSettings().geomorphMerges && !flag(argc, argv, "--no-merges");
   const double measureSamples =
@@ -112,7 +113,7 @@ int main(int argc, char** argv)
   }
   const bool morphing = range > 0.0;
   gmm::Engine e;
-  const std::string err = e.setHeightfield(gmm::makeSyntheticTerrain(n, n, 30.0, 1), block, 0);
+  const std::string err = e.setHeightfield(gmm::makeSyntheticTerrain(n, n, 30.0, seed), block, 0);
   if (!err.empty())
   {
     std::fprintf(stderr, "measure_pop_causes: %s\n", err.c_str());

@@ -456,6 +456,7 @@ TEST(Morph, PartErrorsEqualTheMorphedSurfaceSampled)
         // The ring vertices' targets follow the edges' factors: the strip's own edge at e,
         // every other edge at 0 or 1, the worst of them (MorphBounds.h).
         double expected = 0.0;
+        double atMask[16] = {}; // the inner grid at its targets, per corner of the edges' factors
         for (int mask = 0; mask < 16; ++mask)
         {
           std::array<double, 4> factor{};
@@ -473,7 +474,25 @@ TEST(Morph, PartErrorsEqualTheMorphedSurfaceSampled)
           const SurfaceSample surf = sampleSurface(hf, idx, drawnZ.data());
           for (std::size_t s = 0; s < hf.z.size(); ++s)
             if (surf.covered[s])
-              expected = std::max(expected, std::fabs(surf.z[s] - hf.z[s]));
+              atMask[mask] = std::max(atMask[mask], std::fabs(surf.z[s] - hf.z[s]));
+          expected = std::max(expected, atMask[mask]);
+        }
+        if (p == 0 && rr == 1)
+        {
+          // PartErrors::innerAt: each corner's error, the largest over its sub-masks, rounded
+          // up to float.
+          for (int mask = 0; mask < 16; ++mask)
+          {
+            double want = 0.0;
+            for (int sub = 0; sub < 16; ++sub)
+              if ((sub & mask) == sub)
+                want = std::max(want, atMask[sub]);
+            ASSERT_GE(double(pe.innerAt[mask]), want - 1e-9 * (1.0 + want))
+              << "trial " << trial << " block " << b << " mask " << mask;
+            ASSERT_LE(double(pe.innerAt[mask]), want + 1e-6 * (1.0 + want))
+              << "trial " << trial << " block " << b << " mask " << mask;
+            ++compared;
+          }
         }
         const double got = p == 0 ? pe.inner[rr] : pe.side[p - 1][corner];
         ASSERT_NEAR(got, expected, 1e-9 * (1.0 + expected))
@@ -542,6 +561,7 @@ TEST(Morph, PartErrorsRecomputedPartByPartEqualFreshOnes)
     partial += parts != gmm::kAllMorphParts && parts != 0;
     strips += parts != 0 && !(parts & 1u);
     ASSERT_EQ(std::memcmp(updated.inner, fresh.inner, sizeof fresh.inner), 0) << "trial " << trial;
+    ASSERT_EQ(std::memcmp(updated.innerAt, fresh.innerAt, sizeof fresh.innerAt), 0) << "trial " << trial;
     ASSERT_EQ(std::memcmp(updated.side, fresh.side, sizeof fresh.side), 0) << "trial " << trial << " parts " << parts;
     ASSERT_EQ(updated.innerFrozen, fresh.innerFrozen) << "trial " << trial;
     ASSERT_EQ(updated.sideFrozen, fresh.sideFrozen) << "trial " << trial;
