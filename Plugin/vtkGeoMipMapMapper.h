@@ -306,12 +306,12 @@ public:
    * Larger is smoother where levels do not nest (a block's side strips, merged nodes; inside
    * a block they do) and draws more triangles, since blocks stay finer than PixelError needs
    * while they glide. Measured against no geomorphing at PixelError 2 (measure_popping.py,
-   * decision record 002), with GeomorphMerges on: 1.11x the triangles over N48W125 and 1.36x
-   * over N41E001 at 2; worst pop between frames 1.10 and 0.90 px over those tiles, 0.74 over
-   * measure_pop_causes' fractal. Without GeomorphMerges, 1.05x and 1.28x at 2 (worst pop
-   * 1.85 and 1.78 px), 1.30x and 1.78x at 3; on bench_core's whole-DEM 4097^2 flight at
-   * PixelError 1, 1.30x at 2 and 2.56x at 3. 1 or less selects the coarsest
-   * levels within PixelError and morphs each block as far as its certificate allows. The
+   * decision record 002), with GeomorphMerges on: 1.15x the triangles over N48W125 and 1.34x
+   * over N41E001 at 2; worst pop between frames 1.10 and 0.72 px over those tiles (0.24 px as
+   * the mean of the frames' worst), 0.27 over measure_pop_causes' fractal. Without
+   * GeomorphMerges, 1.05x and 1.28x at 2 (worst pop 1.85 and 1.78 px), 1.30x and 1.78x at 3;
+   * on bench_core's whole-DEM 4097^2 flight at PixelError 1, 1.30x at 2 and 2.56x at 3. 1 or
+   * less selects the coarsest levels within PixelError and morphs each block as far as its certificate allows. The
    * certificate holds at any range.
    */
   void SetGeomorphRange(double range);
