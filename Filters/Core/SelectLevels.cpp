@@ -76,6 +76,13 @@ int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
   return 0;
 }
 
+namespace
+{
+// The last part of a neighbour's path (its factor toward its next level below this) over
+// which its strip at its next finer level is phased in (rampBesideFinerNeighbours).
+constexpr double kBesidePhaseIn = 0.5;
+} // namespace
+
 int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, MorphRamp* ramp)
 {
   if (!ramp || !ramp->active())
@@ -118,18 +125,32 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
       }
       // The beside path's errors are 0 up to the first link coarser than the neighbour; a
       // floor from that link alone skips most paths (rampPathFloor).
-      const int j = firstLinkAbove(chain, links, nbLevel);
-      if (j >= links)
+      auto beside = [&](int level, double ceiling) {
+        const int j = firstLinkAbove(chain, links, level);
+        if (j >= links)
+        {
+          return ceiling; // never coarser than the neighbour: the strip does not change
+        }
+        const double firstError = t.strip(nb, (side + 2) % 4, level, chain[j]);
+        if (j >= 1 && firstError > 0.0 && firstError <= std::numeric_limits<double>::max() &&
+          ceiling <= rampPathFloor(j, firstError, budget[nb], ramp.slope()))
+        {
+          return ceiling;
+        }
+        return rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, level, budget[nb], ramp.slope(), ceiling);
+      };
+      const double atLevel = beside(nbLevel, lambda);
+      // As the neighbour nears its refinement (its path's factor toward its next level going
+      // to 0), its strip at the next finer level takes over, so that the refinement does
+      // not lower this block at once.
+      const double w = nbLevel == ramp.level[nb] ? 1.0 - ramp.factor[nb] / kBesidePhaseIn : 0.0;
+      const int finer = nbLevel - 1;
+      lambda = atLevel;
+      if (w > 0.0 && finer >= 0 && qt.blockIsRingAt(nb, finer) &&
+        !qt.sideAtFullResolutionAt(b, levels[b], side, nb, finer))
       {
-        continue; // never coarser than the neighbour: the strip does not change
+        lambda = std::min(atLevel, atLevel - w * (atLevel - beside(finer, atLevel)));
       }
-      const double firstError = t.strip(nb, (side + 2) % 4, nbLevel, chain[j]);
-      if (j >= 1 && firstError > 0.0 && firstError <= std::numeric_limits<double>::max() &&
-        lambda <= rampPathFloor(j, firstError, budget[nb], ramp.slope()))
-      {
-        continue;
-      }
-      lambda = rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, nbLevel, budget[nb], ramp.slope(), lambda);
     }
     if (lambda < ramp.lambda[b])
     {

@@ -164,8 +164,10 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
 
 // Geomorphing's path beside finer neighbours (MorphRamp.h, rampedLambdaBeside): lowers
 // each listed block on its path so that the strips of its finer neighbours stay within their
-// budgets as it coarsens, before fixStrips would have to refine it at once. Only blocks at
-// their path's level are changed, and only to finer levels.
+// budgets as it coarsens, before fixStrips would have to refine it at once. A neighbour
+// nearing its refinement (its path's factor toward its next level below 0.5) has its strip
+// at its next finer level phased in, so that the refinement does not lower the block at once.
+// Only blocks at their path's level are changed, and only to finer levels.
 void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
   const std::vector<double>& budget, const std::vector<int>& drawn, std::vector<int8_t>& levels,
   MorphRamp& ramp);

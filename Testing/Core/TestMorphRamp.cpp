@@ -556,7 +556,9 @@ TEST(MorphRamp, MergesOnThePathDoNotPop)
 // switches that popped: on its 1025^2 fractal, blocks refining to a level whose inner grid
 // the part errors held below factor 1 (its edges taken at their worst, not at their
 // factors: 0.478 px at frame 69); on the 513^2 one of seed 2, a refining block's strip
-// dropping the edge it had set with its neighbour (0.863 px before such a block yielded).
+// dropping the edge it had set with its neighbour (0.863 px before such a block yielded);
+// on the one of seed 3, a block lowered at once when its neighbour refined (0.530 px before
+// the neighbour's finer strip was phased in along its path: rampBesideFinerNeighbours).
 TEST(MorphRamp, SwitchesMoveWithinTheIssuesBound)
 {
   const double tau = 2.0;
@@ -565,14 +567,14 @@ TEST(MorphRamp, SwitchesMoveWithinTheIssuesBound)
   {
     int n, seed, frames;
   };
-  for (const Case c : { Case{ 1025, 1, 80 }, Case{ 513, 2, 80 } })
+  for (const Case c : { Case{ 1025, 1, 80 }, Case{ 513, 2, 80 }, Case{ 513, 3, 80 } })
   {
     const gmm::Heightfield hf = gmm::makeSyntheticTerrain(c.n, c.n, 30.0, c.seed);
     const FlightOutcome byDefault = fly(hf, 32, tau, gmm::kDefaultMorphRange, c.frames, 0.04, merges);
     std::printf("[ ramp ] %d^2, seed %d (measure_pop_causes), tau 2, defaults, %d frames: worst pop %.3f px, "
                 "mean of frame worst %.3f, measured error %.3f px, triangles %zu\n",
       c.n, c.seed, c.frames, byDefault.worstPop, byDefault.meanPop, byDefault.worstError, byDefault.triangles);
-    EXPECT_LE(byDefault.worstPop, 0.3) << c.n << "^2"; // issue #51's bound (0.267 and 0.275 px)
+    EXPECT_LE(byDefault.worstPop, 0.3) << c.n << "^2"; // issue #51's bound (0.267, 0.275, 0.170 px)
     EXPECT_LE(byDefault.worstError, tau) << c.n << "^2";
   }
 }
