@@ -35,7 +35,6 @@ double blockSurfaceAt(int i0, int i1, int j0, int j1, int level, bool oneQuadAnt
   return splitQuadHeight(cornerAt(ia, ja), cornerAt(ib, ja), cornerAt(ia, jb), cornerAt(ib, jb), fx, fy, anti);
 }
 
-
 } // namespace
 
 double diagonalReach(const double e[4], double limit)
@@ -96,8 +95,6 @@ double diagonalReach(const double e[4], double limit)
 
 namespace
 {
-
-
 // blockEdges of a frame being written.
 std::array<MorphEdge*, 4> edgesOf(const Quadtree& qt, MorphFrame& f, int block)
 {
@@ -225,7 +222,6 @@ void assignSlots(const std::vector<int>& drawn, MorphCache& cache)
   cache.held = cache.drawnSlots;
 }
 } // namespace
-
 
 void drawnEdgeFrame(const Quadtree& qt, const std::vector<int8_t>& levels, MorphFrame& out,
   const std::vector<int>* drawnBlocks, const std::vector<BlockConfig>* drawnConfigs)

@@ -185,7 +185,6 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   const MorphRamp* ramp = nullptr, const std::vector<int>* drawnBlocks = nullptr,
   const std::vector<BlockConfig>* drawnConfigs = nullptr, const ErrorTable* table = nullptr);
 
-
 // computeMorph's first pass over the drawn blocks that morph (out.blocks[k] with a target
 // and cache.budgets[k] >= 0; cache.drawnSlots, configs and edges filled, and the edges'
 // levels and targets set): brings each slot's part errors to the block's key (level, edge

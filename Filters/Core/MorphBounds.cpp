@@ -150,6 +150,25 @@ struct InnerCorners
       at[mask] = std::max(at[mask], std::fabs(sum[mask]));
     }
   }
+  // PartErrors::innerAt: every corner with the still samples, rounded up to float, and made
+  // non-decreasing in the mask (each the largest over its sub-masks).
+  void finish(float out[16]) const
+  {
+    for (int mask = 0; mask < 16; ++mask)
+    {
+      out[mask] = roundUpToFloat(std::max(still, at[mask]));
+    }
+    for (int side = 0; side < 4; ++side)
+    {
+      for (int mask = 0; mask < 16; ++mask)
+      {
+        if (mask & (1 << side))
+        {
+          out[mask] = std::max(out[mask], out[mask ^ (1 << side)]);
+        }
+      }
+    }
+  }
 };
 
 // One triangle's contribution to a part's four corner errors: at every sample it covers,
@@ -348,16 +367,22 @@ double innerBound(const PartErrors& errors, const std::array<double, 4>& te, dou
 
 double innerReach(const PartErrors& errors, const std::array<double, 4>& te, double limit)
 {
-  const double a = errors.inner[0], b = innerAtEdges(errors, te);
-  if (!(a <= limit))
-  {
-    return 0.0;
-  }
+  const double a = errors.inner[0];
+  return a <= limit ? linearReach(a, innerAtEdges(errors, te), limit) : 0.0;
+}
+
+double clamp01(double t)
+{
+  return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; // NaN -> 0
+}
+
+double linearReach(double a, double b, double limit)
+{
   if (b <= limit)
   {
     return 1.0;
   }
-  return std::min(std::max((limit - a) / (b - a), 0.0), 1.0);
+  return b > a ? clamp01((limit - a) / (b - a)) : 0.0;
 }
 
 PartErrors morphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
@@ -507,20 +532,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     {
       out.inner[0] = err[0];
       out.inner[1] = err[1];
-      for (int mask = 0; mask < 16; ++mask)
-      {
-        out.innerAt[mask] = roundUpToFloat(std::max(innerCorners.still, innerCorners.at[mask]));
-      }
-      for (int side = 0; side < 4; ++side) // non-decreasing: each the largest over its sub-masks
-      {
-        for (int mask = 0; mask < 16; ++mask)
-        {
-          if (mask & (1 << side))
-          {
-            out.innerAt[mask] = std::max(out.innerAt[mask], out.innerAt[mask ^ (1 << side)]);
-          }
-        }
-      }
+      innerCorners.finish(out.innerAt);
       out.innerFrozen = !finite;
     }
     else

@@ -67,6 +67,12 @@ double innerBound(const PartErrors& errors, const std::array<double, 4>& te, dou
 // The largest tb in [0, 1] with innerBound(errors, te, t) <= limit for every t in [0, tb].
 double innerReach(const PartErrors& errors, const std::array<double, 4>& te, double limit);
 
+// t in [0, 1] (NaN -> 0).
+double clamp01(double t);
+// Largest x in [0, 1] with a + x (b - a) <= limit, given a <= limit (the linear bound at 0
+// holds): how far a linear bound may be pushed.
+double linearReach(double a, double b, double limit);
+
 // Largest t in [0, 1] with stripBound(e, t, t) <= limit on all of [0, t] (0 when it does
 // not hold at 0): how far a block and an edge it sets may morph together.
 double diagonalReach(const double e[4], double limit);

@@ -7,11 +7,6 @@
 namespace gmm
 {
 
-double clamp01(double t)
-{
-  return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; // NaN -> 0
-}
-
 float factorDown(double t)
 {
   float f = static_cast<float>(clamp01(t));
@@ -20,15 +15,6 @@ float factorDown(double t)
     f = std::nextafter(f, 0.0f);
   }
   return f;
-}
-
-double linearReach(double a, double b, double limit)
-{
-  if (b <= limit)
-  {
-    return 1.0;
-  }
-  return b > a ? clamp01((limit - a) / (b - a)) : 0.0;
 }
 
 std::array<double, 4> edgeFactors(const std::array<MorphEdge*, 4>& edges)

@@ -16,16 +16,9 @@
 namespace gmm
 {
 
-// t in [0, 1] (NaN -> 0).
-double clamp01(double t);
-
 // Factors are stored as float (what the shader reads): rounded down, never above the
 // factor the certificate allows.
 float factorDown(double t);
-
-// Largest x in [0, 1] with a + x (b - a) <= limit, given a <= limit (the linear bound at 0
-// holds): how far a linear bound may be pushed.
-double linearReach(double a, double b, double limit);
 
 // The factors of a block's four edges (0 where an edge does not move).
 std::array<double, 4> edgeFactors(const std::array<MorphEdge*, 4>& edges);

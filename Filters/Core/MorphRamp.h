@@ -57,6 +57,13 @@ constexpr double kMorphSettlePerFrame = 0.02;
 // otherwise jump to the path's value in one frame.
 constexpr double kMorphRisePixels = 0.1;
 
+// The last part of a neighbour's path (its factor toward its next level below this) over
+// which its strip at its next finer level is phased into a block's beside path
+// (rampBesideFinerNeighbours, SelectLevels.h), so that the neighbour's refinement does not
+// lower the block at once. Over the whole path (1) it added twice the LOD instructions for
+// the same pops; over a quarter, a fast flight's worst pop rose (decision record 002).
+constexpr double kBesidePhaseIn = 0.5;
+
 // The path's outcome for the blocks a frame selected, per block (stale for the others).
 struct MorphRamp
 {

@@ -76,13 +76,6 @@ int coarsestWithin(const ErrorTable& t, int b, int top, double budget)
   return 0;
 }
 
-namespace
-{
-// The last part of a neighbour's path (its factor toward its next level below this) over
-// which its strip at its next finer level is phased in (rampBesideFinerNeighbours).
-constexpr double kBesidePhaseIn = 0.5;
-} // namespace
-
 int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, MorphRamp* ramp)
 {
   if (!ramp || !ramp->active())
