@@ -21,6 +21,19 @@ inline double argOr(int argc, char** argv, const char* name, double fallback)
   return fallback;
 }
 
+// The word after `name`, or null when `name` is not given.
+inline const char* stringArg(int argc, char** argv, const char* name)
+{
+  for (int k = 1; k + 1 < argc; ++k)
+  {
+    if (std::strcmp(argv[k], name) == 0)
+    {
+      return argv[k + 1];
+    }
+  }
+  return nullptr;
+}
+
 // Whether `name` is given.
 inline bool flag(int argc, char** argv, const char* name)
 {

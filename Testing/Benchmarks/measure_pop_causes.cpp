@@ -19,6 +19,10 @@
 //
 //   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--seed 1] [--step 0.04]
 //                      [--frames 120] [--threshold 0.3] [--no-merges] [--measure-samples N]
+//                      [--amplitude 1500] [--hgt FILE]
+//
+// --amplitude sets the fractal's (metres); --hgt flies over an SRTM tile instead
+// (Testing/Core/HgtTile.h: its samples on a metric grid of its spacing).
 //
 // --range 0 turns geomorphing off (levels switch at once); --no-merges lets merges skip the
 // path's levels (the mapper's SetGeomorphMerges off; on by default, as in the mapper);
@@ -29,12 +33,14 @@
 #include "Morph.h"
 #include "SyntheticTerrain.h"
 #include "../Core/CoreTestUtil.h"
+#include "../Core/HgtTile.h"
 #include "../Core/MorphTestUtil.h"
 #include "ToolArguments.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -101,6 +107,7 @@ int main(int argc, char** argv)
   const double stepBlocks = argOr(argc, argv, "--step", 0.04);
   const int frames = static_cast<int>(argOr(argc, argv, "--frames", 120));
   const int seed = static_cast<int>(argOr(argc, argv, "--seed", 1));
+  const double amplitude = argOr(argc, argv, "--amplitude", 1500.0);
   const double threshold = argOr(argc, argv, "--threshold", 0.3);
   const bool merges = gmm::FrameSettings().geomorphMerges && !flag(argc, argv, "--no-merges");
   const double measureSamples =
@@ -112,8 +119,18 @@ int main(int argc, char** argv)
     return 2;
   }
   const bool morphing = range > 0.0;
+  const char* hgt = gmmbench::stringArg(argc, argv, "--hgt");
+  gmm::Heightfield input;
+  std::string err = hgt ? gmmtest::readHgtTile(hgt, input) : "";
+  if (!hgt)
+  {
+    input = gmm::makeSyntheticTerrain(n, n, 30.0, seed, amplitude);
+  }
   gmm::Engine e;
-  const std::string err = e.setHeightfield(gmm::makeSyntheticTerrain(n, n, 30.0, seed), block, 0);
+  if (err.empty())
+  {
+    err = e.setHeightfield(std::move(input), block, 0);
+  }
   if (!err.empty())
   {
     std::fprintf(stderr, "measure_pop_causes: %s\n", err.c_str());
@@ -123,7 +140,11 @@ int main(int argc, char** argv)
   e.setMergeOnPath(merges);
   const gmm::Heightfield& hf = e.heightfield();
   const gmm::Quadtree& qt = e.quadtree();
-  const double top = *std::max_element(hf.z.begin(), hf.z.end());
+  double top = -std::numeric_limits<double>::infinity();
+  for (float z : hf.z)
+  {
+    top = std::isfinite(z) ? std::max(top, static_cast<double>(z)) : top;
+  }
 
   gmm::MorphCache cache;
   cache.measureLimit = static_cast<std::size_t>(measureSamples);
@@ -222,9 +243,10 @@ int main(int argc, char** argv)
   {
     std::snprintf(mode, sizeof mode, "geomorphing range %g, merges %s the path", range, merges ? "on" : "off");
   }
-  std::printf("fractal %d^2, block %d, tau %g, %s, %d frames of %g blocks: worst pop %.3f px, mean of "
+  const std::string what = hgt ? std::string(hgt) : "fractal " + std::to_string(n) + "^2";
+  std::printf("%s, block %d, tau %g, %s, %d frames of %g blocks: worst pop %.3f px, mean of "
               "frames' worst %.3f px, %.0f triangles a frame\n",
-    n, block, tau, mode, frames, stepBlocks, worstPop, meanOfFrameWorst, triangles);
+    what.c_str(), block, tau, mode, frames, stepBlocks, worstPop, meanOfFrameWorst, triangles);
   std::printf("samples moving more than %g px between frames, by cause:\n", threshold);
   std::printf("| cause | samples | frames | worst px |\n|---|---|---|---|\n");
   for (int c = 0; c < CauseCount; ++c)
