@@ -187,19 +187,23 @@ bool rasterise(const Heightfield& hf, const GridTriangle& t, long long area, con
   {
     return true;
   }
-  const double sign = area < 0 ? -1.0 : 1.0;
-  const double inv = 1.0 / static_cast<double>(area < 0 ? -area : area);
+  // sign * w / |area| as w * (sign / |area|): the same double (sign is +-1).
+  const double signedInv = (area < 0 ? -1.0 : 1.0) / static_cast<double>(area < 0 ? -area : area);
   const double dh1 = h[1] - h[0], dh2 = h[2] - h[0]; // relative to vertex 0: a large datum costs no precision
   const bool coupled = c[0] || c[1] || c[2];
   // A vertex has two edge functions at 0; only rows through a vertex are tested.
   auto isVertex = [&](const long long w[3], bool vertexRow) {
-    return verticesDone && vertexRow && (w[0] == 0) + (w[1] == 0) + (w[2] == 0) >= 2;
+    if (!vertexRow || !verticesDone)
+    {
+      return false;
+    }
+    return (w[0] == 0) + (w[1] == 0) + (w[2] == 0) >= 2;
   };
   // The sample's weights l and the unmorphed surface's distance above it, S - H.
   auto gap = [&](long long i, long long j, const long long w[3], double l[3]) {
-    l[0] = sign * static_cast<double>(w[0]) * inv;
-    l[1] = sign * static_cast<double>(w[1]) * inv;
-    l[2] = sign * static_cast<double>(w[2]) * inv;
+    l[0] = static_cast<double>(w[0]) * signedInv;
+    l[1] = static_cast<double>(w[1]) * signedInv;
+    l[2] = static_cast<double>(w[2]) * signedInv;
     const double H = hf.height(static_cast<int>(i), static_cast<int>(j));
     return (l[1] * dh1 + l[2] * dh2) - (H - h[0]);
   };
