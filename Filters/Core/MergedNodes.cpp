@@ -1,4 +1,5 @@
 // Merged nodes (Tessellate.h): a quadtree node drawn whole as one fan.
+#include "Levels.h"
 #include "Tessellate.h"
 #include "TriangleSinks.h"
 
@@ -11,6 +12,35 @@ bool mergeableNode(const Quadtree& qt, int node)
   // coarsest (2 (c + r) <= 2 c r), and its centre sample is strictly inside.
   const QuadtreeNode& n = qt.nodes[node];
   return n.colEnd - n.colBegin >= 2 && n.rowEnd - n.rowBegin >= 2;
+}
+
+bool mergeNestsInBlocks(const Quadtree& qt, int node)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  if (n.colEnd - n.colBegin != 2 || n.rowEnd - n.rowBegin != 2)
+  {
+    return false;
+  }
+  for (int r = n.rowBegin; r < n.rowEnd; ++r)
+  {
+    for (int c = n.colBegin; c < n.colEnd; ++c)
+    {
+      const int b = qt.blockIndex(c, r);
+      const int w = qt.blockWidth(b), h = qt.blockHeight(b);
+      if (blockShape(w, h, qt.blockTopLevel(b)) != BlockShape::OneQuad)
+      {
+        return false;
+      }
+      for (int side = 0; side < 4; ++side)
+      {
+        if (qt.sideAtFullResolution(b, side))
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
 }
 
 GridPoint mergedCentre(const Quadtree& qt, int node)

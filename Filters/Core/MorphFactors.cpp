@@ -173,12 +173,26 @@ void yieldToCoarserEdges(const Quadtree& qt, const std::vector<int8_t>& levels, 
     {
       const MorphEdge& e = *cache.edges[k][side];
       const MorphEdge& was = state.lastEdges[side];
-      if (e.level <= levels[b] || e.target < 0 || neighbour[side] < 0 || was.level != e.level ||
-        was.target != e.target || pe.sideFrozen[side])
+      if (e.level <= levels[b] || e.target < 0 || neighbour[side] < 0 || pe.sideFrozen[side])
       {
-        continue; // not a coarser neighbour's edge drawn as in the last frame
+        continue; // not a coarser neighbour's edge
       }
-      const double want = std::min<double>(was.t - risePixels(pe, side, f), out.blockT[neighbour[side]]);
+      // The edge's factor that draws it as in the last frame: its own, or 1 where it was
+      // drawn at its target level, unmorphed (its setter refined since).
+      double wasT = 0.0;
+      if (was.level == e.level && was.target == e.target)
+      {
+        wasT = was.t;
+      }
+      else if (was.level == e.target && (was.target < 0 || was.t <= 0.0f))
+      {
+        wasT = 1.0;
+      }
+      else
+      {
+        continue;
+      }
+      const double want = std::min<double>(wasT - risePixels(pe, side, f), out.blockT[neighbour[side]]);
       if (!(want > e.t))
       {
         continue;

@@ -57,6 +57,15 @@ constexpr double kMorphSettlePerFrame = 0.02;
 // otherwise jump to the path's value in one frame.
 constexpr double kMorphRisePixels = 0.1;
 
+// While merges wait for the path (MorphRamp::mergeOnPath), a quadtree node whose fan is not
+// its blocks' surface (over more than 2 x 2 blocks: mergeNestsInBlocks, Tessellate.h) is
+// drawn whole only where its exact error also projects within this many pixels. Merging or
+// splitting it changes the drawn surface by up to its fan's error and its children's, so at
+// tau's edge it popped (1.8 px on measure_pop_causes' flight over N48W125 at tau 2); far
+// terrain, where such nodes are a few pixels wide, still merges. The bound on a
+// frame's pop (decision record 002).
+constexpr double kMergePopPixels = 0.3;
+
 // The last part of a neighbour's path (its factor toward its next level below this) over
 // which its strip at its next finer level is phased into a block's beside path
 // (rampBesideFinerNeighbours, SelectLevels.h), so that the neighbour's refinement does not

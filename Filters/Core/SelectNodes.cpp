@@ -59,8 +59,12 @@ public:
       const double f = memoised(n.box, index, ns_.nodeFactor, ns_.nodeStamp);
       const double budget = errorBudget(tau_, f);
       // Merging on geomorphing's path: only once the node's blocks have reached their top
-      // level (rampNodeTopBudget), so that the merge does not skip levels.
-      if (e <= budget && (!mergeGate_ || rampNodeTopBudget(qt_, table_, *mergeGate_, index) <= budget))
+      // level (rampNodeTopBudget), so that the merge does not skip levels, and a node whose
+      // fan is not its blocks' surface only within kMergePopPixels (MorphRamp.h).
+      if (e <= budget &&
+        (!mergeGate_ ||
+          (rampNodeTopBudget(qt_, table_, *mergeGate_, index) <= budget &&
+            (e <= errorBudget(kMergePopPixels, f) || mergeNestsInBlocks(qt_, index)))))
       {
         merge(index, f);
         return;

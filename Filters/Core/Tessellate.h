@@ -183,6 +183,11 @@ inline bool drawnLevel(int level)
 // triangles than its blocks at their coarsest, and a centre sample strictly inside).
 bool mergeableNode(const Quadtree& qt, int node);
 
+// True when `node`'s fan is exactly its blocks drawn at their top level: 2 x 2 blocks, each
+// one quad there, none with a side at full resolution (see above). Merging a larger node,
+// or splitting it, changes the surface by up to its fan's error and its children's.
+bool mergeNestsInBlocks(const Quadtree& qt, int node);
+
 // The apex of a mergeable node's fan: the block corner where the quadtree splits it into
 // its children (the sample nearest its centre when its blocks are alike).
 GridPoint mergedCentre(const Quadtree& qt, int node);
