@@ -306,9 +306,9 @@ public:
    * Larger is smoother where levels do not nest (a block's side strips, merged nodes; inside
    * a block they do) and draws more triangles, since blocks stay finer than PixelError needs
    * while they glide. Measured against no geomorphing at PixelError 2 (measure_popping.py,
-   * decision record 002), with GeomorphMerges on: 1.15x the triangles over N48W125 and 1.34x
-   * over N41E001 at 2; worst pop between frames 1.10 and 0.72 px over those tiles (0.24 px as
-   * the mean of the frames' worst), 0.27 over measure_pop_causes' fractal. Without
+   * decision record 002), with GeomorphMerges on: 1.17x the triangles over N48W125 and 1.34x
+   * over N41E001 at 2; worst pop between frames 0.85 and 0.62 px over those tiles (0.09 and
+   * 0.20 px as the mean of the frames' worst), 0.27 over measure_pop_causes' fractal. Without
    * GeomorphMerges, 1.05x and 1.28x at 2 (worst pop 1.85 and 1.78 px), 1.30x and 1.78x at 3;
    * on bench_core's whole-DEM 4097^2 flight at PixelError 1, 1.30x at 2 and 2.56x at 3. 1 or
    * less selects the coarsest levels within PixelError and morphs each block as far as its certificate allows. The
@@ -323,15 +323,15 @@ public:
    * Geomorph merges too (on by default): while geomorphing, far terrain is drawn as a
    * merged quadtree node only where the node's blocks have reached their coarsest level on
    * the geomorphing path. A node over 2 x 2 blocks then draws exactly what its blocks
-   * drew, so merging and splitting it moves nothing (nodes of more blocks replace their
-   * children's fans by one, which still moves a little). With it off, a merge replaces
-   * blocks that the path still holds several levels finer, and the surface jumps by up to
-   * about PixelError. Measured at PixelError 2 and the default block size and range
-   * (measure_popping.py's slow flights; decision record 002), off against on: the worst
-   * jump between frames 1.85 against 1.10 px over N48W125, 1.78 against 0.90 over
-   * N41E001, 1.36 against 0.74 over measure_pop_causes' 1025^2 fractal, the mean of the
-   * frames' worst 0.37 / 0.33, 0.91 / 0.46 and 0.33 / 0.29 px, for 5.4 %, 6.0 % and 0.2 %
-   * more triangles. The price is in wide views, where blocks stay finer for longer: on
+   * drew, so merging and splitting it moves nothing; a node of more blocks, whose fan is not
+   * its children's surface, is drawn whole only where its error also projects within 0.3 px.
+   * With it off, a merge replaces blocks that the path still holds several levels finer,
+   * and the surface jumps by up to about PixelError. Measured at PixelError 2 and the
+   * default block size and range (measure_popping.py's slow flights, 40 frames; decision
+   * record 002), off against on: the worst jump between frames 1.85 against 0.85 px over
+   * N48W125 and 1.78 against 0.62 over N41E001, the mean of the frames' worst 0.29 / 0.09
+   * and 0.77 / 0.20 px, for 11 % and 8 % more triangles. The price is in wide views, where
+   * blocks stay finer for longer: on
    * bench_core's flight with a whole DEM ahead at PixelError 1, 3 % more triangles and a
    * LOD update of 1.34 ms instead of 0.68 ms at 16385^2, 6 % and 2.2 instead of 1.5 ms at
    * 4097^2.
