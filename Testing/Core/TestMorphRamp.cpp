@@ -41,6 +41,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace gmmtest;
@@ -455,6 +456,20 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
   out.triangles /= frames;
   return out;
 }
+
+// measure_pop_causes' flight with the defaults (block 32, tau 2, 0.04 blocks a frame), its
+// outcome printed as `what` and its measured error checked against tau.
+FlightOutcome flyByDefault(const gmm::Heightfield& hf, int frames, const std::string& what)
+{
+  const double tau = 2.0;
+  const FlightOutcome out =
+    fly(hf, 32, tau, gmm::kDefaultMorphRange, frames, 0.04, gmm::FrameSettings().geomorphMerges);
+  std::printf("[ ramp ] %s, tau 2, defaults, %d frames: worst pop %.3f px, mean of frame worst %.3f, measured "
+              "error %.3f px, triangles %zu\n",
+    what.c_str(), frames, out.worstPop, out.meanPop, out.worstError, out.triangles);
+  EXPECT_LE(out.worstError, tau) << what;
+  return out;
+}
 } // namespace
 
 // The range the level path's smoothing thresholds below were measured at. The product's
@@ -567,21 +582,15 @@ TEST(MorphRamp, MergesOnThePathDoNotPop)
 // the neighbour's finer strip was phased in along its path: rampBesideFinerNeighbours).
 TEST(MorphRamp, SwitchesMoveWithinTheIssuesBound)
 {
-  const double tau = 2.0;
-  const bool merges = gmm::FrameSettings().geomorphMerges;
   struct Case
   {
     int n, seed, frames;
   };
   for (const Case c : { Case{ 1025, 1, 80 }, Case{ 513, 2, 80 }, Case{ 513, 3, 80 } })
   {
-    const gmm::Heightfield hf = gmm::makeSyntheticTerrain(c.n, c.n, 30.0, c.seed);
-    const FlightOutcome byDefault = fly(hf, 32, tau, gmm::kDefaultMorphRange, c.frames, 0.04, merges);
-    std::printf("[ ramp ] %d^2, seed %d (measure_pop_causes), tau 2, defaults, %d frames: worst pop %.3f px, "
-                "mean of frame worst %.3f, measured error %.3f px, triangles %zu\n",
-      c.n, c.seed, c.frames, byDefault.worstPop, byDefault.meanPop, byDefault.worstError, byDefault.triangles);
-    EXPECT_LE(byDefault.worstPop, 0.3) << c.n << "^2"; // issue #51's bound (0.267, 0.275, 0.170 px)
-    EXPECT_LE(byDefault.worstError, tau) << c.n << "^2";
+    const std::string what = std::to_string(c.n) + "^2, seed " + std::to_string(c.seed);
+    const FlightOutcome byDefault = flyByDefault(gmm::makeSyntheticTerrain(c.n, c.n, 30.0, c.seed), c.frames, what);
+    EXPECT_LE(byDefault.worstPop, 0.3) << what; // issue #51's bound (0.267, 0.275, 0.170 px)
   }
 }
 
@@ -592,15 +601,9 @@ TEST(MorphRamp, SwitchesMoveWithinTheIssuesBound)
 // left, 0.509 px, is switches in inner grids, not merges.
 TEST(MorphRamp, LargeMergesWaitUntilTheyMoveLittle)
 {
-  const gmm::Heightfield hf = gmm::makeSyntheticTerrain(1025, 1025, 30.0, 1, 300.0);
-  const double tau = 2.0;
   const FlightOutcome byDefault =
-    fly(hf, 32, tau, gmm::kDefaultMorphRange, 80, 0.04, gmm::FrameSettings().geomorphMerges);
-  std::printf("[ ramp ] 1025^2, amplitude 300 m, tau 2, defaults, 80 frames: worst pop %.3f px, mean of frame "
-              "worst %.3f, measured error %.3f px, triangles %zu\n",
-    byDefault.worstPop, byDefault.meanPop, byDefault.worstError, byDefault.triangles);
+    flyByDefault(gmm::makeSyntheticTerrain(1025, 1025, 30.0, 1, 300.0), 80, "1025^2, amplitude 300 m");
   EXPECT_LE(byDefault.worstPop, 0.55);
-  EXPECT_LE(byDefault.worstError, tau);
 }
 
 // The first 20 frames of measure_pop_causes' flight over N48W125 (--hgt: a 1" tile, half
@@ -624,14 +627,7 @@ TEST(MorphRamp, RealCoastFlightSwitchesWithinTheIssuesBound)
   }
   gmm::Heightfield hf;
   ASSERT_EQ(gmmtest::readHgtTile(path, hf), "");
-  const double tau = 2.0;
-  const FlightOutcome byDefault =
-    fly(hf, 32, tau, gmm::kDefaultMorphRange, 20, 0.04, gmm::FrameSettings().geomorphMerges);
-  std::printf("[ ramp ] N48W125, tau 2, defaults, 20 frames: worst pop %.3f px, mean of frame worst %.3f, "
-              "measured error %.3f px, triangles %zu\n",
-    byDefault.worstPop, byDefault.meanPop, byDefault.worstError, byDefault.triangles);
-  EXPECT_LE(byDefault.worstPop, 0.3); // issue #51's bound
-  EXPECT_LE(byDefault.worstError, tau);
+  EXPECT_LE(flyByDefault(hf, 20, "N48W125").worstPop, 0.3); // issue #51's bound
 }
 
 TEST(MorphRamp, OnlyAFiniteRangeAboveOneFollowsThePath)
