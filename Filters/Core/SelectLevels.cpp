@@ -93,9 +93,46 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
   return m;
 }
 
+namespace
+{
+// What rampBesideFinerNeighbours reads of neighbour nb of block b: its level (-1: none to
+// look at), budget and place on its path.
+struct BesideNeighbour
+{
+  int level = -1, pathLevel = -1;
+  double budget = 0.0;
+  float pathFactor = 0.0f;
+};
+
+BesideNeighbour besideNeighbour(const Quadtree& qt, const ErrorTable& t, const std::vector<double>& budget,
+  const std::vector<int8_t>& levels, MorphRamp& ramp, const BoxProjector* projector, double tau, int b, int nb)
+{
+  BesideNeighbour n;
+  if (nb >= 0 && levels[nb] >= 0)
+  {
+    n.level = levels[nb];
+    n.budget = budget[nb];
+    n.pathLevel = ramp.level[nb];
+    n.pathFactor = ramp.factor[nb];
+  }
+  else if (nb >= 0 && levels[nb] == -1 && projector && !qt.blockHasNodata[nb])
+  {
+    // Out of view, where its path would put it, so that a block does not coarsen at once
+    // when its neighbour leaves the view (nor refine at once when it enters). Its budget is
+    // taken no smaller than the block's / range (at most one level finer on the path): under
+    // the camera a box's factor grows without bound, and the block's hold with it.
+    n.budget = std::max(errorBudget(tau, projector->factor(qt.blockBox[nb])), budget[b] / ramp.range);
+    MorphChain chain;
+    const int links = morphChain(qt, nb, chain);
+    n.level = n.pathLevel = levelOnChain(chain, links, rampedLambda(t, nb, chain, links, n.budget, ramp), n.pathFactor);
+  }
+  return n;
+}
+} // namespace
+
 void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
   const std::vector<double>& budget, const std::vector<int>& drawn, std::vector<int8_t>& levels,
-  MorphRamp& ramp)
+  MorphRamp& ramp, const BoxProjector* projector, double tau)
 {
   for (int b : drawn)
   {
@@ -111,14 +148,16 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
     for (int side = 0; side < 4; ++side)
     {
       const int nb = neighbour[side];
-      const int nbLevel = nb >= 0 ? levels[nb] : -1;
+      const BesideNeighbour beside = besideNeighbour(qt, t, budget, levels, ramp, projector, tau, b, nb);
+      const int nbLevel = beside.level;
+      const double nbBudget = beside.budget;
       if (nbLevel < 0 || !qt.blockIsRingAt(nb, nbLevel) || qt.sideAtFullResolutionAt(b, levels[b], side, nb, nbLevel))
       {
         continue; // no strip of the neighbour joins this edge, or it does not follow b's level
       }
       // The beside path's errors are 0 up to the first link coarser than the neighbour; a
       // floor from that link alone skips most paths (rampPathFloor).
-      auto beside = [&](int level, double ceiling) {
+      auto besidePath = [&](int level, double ceiling) {
         const int j = firstLinkAbove(chain, links, level);
         if (j >= links)
         {
@@ -126,23 +165,23 @@ void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
         }
         const double firstError = t.strip(nb, (side + 2) % 4, level, chain[j]);
         if (j >= 1 && firstError > 0.0 && firstError <= std::numeric_limits<double>::max() &&
-          ceiling <= rampPathFloor(j, firstError, budget[nb], ramp.slope()))
+          ceiling <= rampPathFloor(j, firstError, nbBudget, ramp.slope()))
         {
           return ceiling;
         }
-        return rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, level, budget[nb], ramp.slope(), ceiling);
+        return rampedLambdaBeside(t, chain, links, nb, (side + 2) % 4, level, nbBudget, ramp.slope(), ceiling);
       };
-      const double atLevel = beside(nbLevel, lambda);
+      const double atLevel = besidePath(nbLevel, lambda);
       // As the neighbour nears its refinement (its path's factor toward its next level going
       // to 0), its strip at the next finer level takes over, so that the refinement does
       // not lower this block at once.
-      const double w = nbLevel == ramp.level[nb] ? 1.0 - ramp.factor[nb] / kBesidePhaseIn : 0.0;
+      const double w = nbLevel == beside.pathLevel ? 1.0 - beside.pathFactor / kBesidePhaseIn : 0.0;
       const int finer = nbLevel - 1;
       lambda = atLevel;
       if (w > 0.0 && finer >= 0 && qt.blockIsRingAt(nb, finer) &&
         !qt.sideAtFullResolutionAt(b, levels[b], side, nb, finer))
       {
-        lambda = std::min(atLevel, atLevel - w * (atLevel - beside(finer, atLevel)));
+        lambda = std::min(atLevel, atLevel - w * (atLevel - besidePath(finer, atLevel)));
       }
     }
     if (lambda < ramp.lambda[b])

@@ -167,10 +167,14 @@ int leafLevel(const Quadtree& qt, const ErrorTable& t, int b, double budget, Mor
 // budgets as it coarsens, before fixStrips would have to refine it at once. A neighbour
 // nearing its refinement (its path's factor toward its next level below 0.5) has its strip
 // at its next finer level phased in, so that the refinement does not lower the block at once.
-// Only blocks at their path's level are changed, and only to finer levels.
+// Only blocks at their path's level are changed, and only to finer levels. With `projector`
+// (a camera's frame, and its `tau`), a neighbour out of view (level -1, without nodata)
+// counts where its path would put it, its budget taken no smaller than the block's / range:
+// so a block does not coarsen at once when its neighbour leaves the view. Without it, such
+// neighbours are not looked at.
 void rampBesideFinerNeighbours(const Quadtree& qt, const ErrorTable& t,
   const std::vector<double>& budget, const std::vector<int>& drawn, std::vector<int8_t>& levels,
-  MorphRamp& ramp);
+  MorphRamp& ramp, const BoxProjector* projector = nullptr, double tau = 0.0);
 
 // Refines neighbours until every strip of a drawn block (listed in `drawn`) joined to a
 // coarser edge fits the block's budget. Levels only decrease, so this ends; a neighbour at

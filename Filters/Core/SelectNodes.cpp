@@ -324,7 +324,7 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     }
     if (ramp && ramp->active())
     {
-      rampBesideFinerNeighbours(qt, table, scratch.budget, round, out.levels, *ramp);
+      rampBesideFinerNeighbours(qt, table, scratch.budget, round, out.levels, *ramp, projector, tau);
     }
     fixStrips(qt, table, scratch.budget, round, out.levels, scratch);
     if (scratch.splitRequests.empty())
