@@ -40,7 +40,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -140,11 +139,7 @@ int main(int argc, char** argv)
   e.setMergeOnPath(merges);
   const gmm::Heightfield& hf = e.heightfield();
   const gmm::Quadtree& qt = e.quadtree();
-  double top = -std::numeric_limits<double>::infinity();
-  for (float z : hf.z)
-  {
-    top = std::isfinite(z) ? std::max(top, static_cast<double>(z)) : top;
-  }
+  const double top = gmmtest::highestSample(hf);
 
   gmm::MorphCache cache;
   cache.measureLimit = static_cast<std::size_t>(measureSamples);

@@ -135,7 +135,7 @@ int main(int argc, char** argv)
   const gmm::Heightfield& hf = e.heightfield();
   const gmm::Quadtree& qt = e.quadtree();
   const gmm::ErrorTable& table = e.errorTable();
-  const double top = *std::max_element(hf.z.begin(), hf.z.end());
+  const double top = gmmtest::highestSample(hf);
   std::vector<double> rulePx, nestedPx, neighbourPx;
   // A block's samples as it draws them at `cfg` (glided edges' on their polylines).
   auto baseHeights = [&](int block, const gmm::BlockConfig& cfg) {

@@ -4,11 +4,24 @@
 #include "Engine.h"
 #include "Morph.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace gmmtest
 {
+
+// The highest sample of `hf`, nodata (NaN) aside: the height poppingFlightView flies above.
+inline double highestSample(const gmm::Heightfield& hf)
+{
+  double top = -std::numeric_limits<double>::infinity();
+  for (float z : hf.z)
+  {
+    top = std::isfinite(z) ? std::max(top, static_cast<double>(z)) : top;
+  }
+  return top;
+}
 
 // Frame `frame` of the slow, low flight of Testing/Benchmarks/measure_popping.py over `hf`
 // (highest sample `top`): a straight line across the middle from a tenth of the way in,

@@ -396,11 +396,7 @@ FlightOutcome fly(const gmm::Heightfield& input, int block, double tau, double r
   e.setMorphRange(range);
   e.setMergeOnPath(mergeOnPath);
   const gmm::Heightfield& hf = e.heightfield();
-  double top = -std::numeric_limits<double>::infinity(); // nodata (NaN) aside
-  for (float z : hf.z)
-  {
-    top = std::isfinite(z) ? std::max(top, static_cast<double>(z)) : top;
-  }
+  const double top = highestSample(hf);
   gmm::MorphCache cache;
   FlightOutcome out;
   std::vector<double> prev;
