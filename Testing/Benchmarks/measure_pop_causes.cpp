@@ -9,6 +9,9 @@
 //              (side strips, fans toward the edge level), or an inner-grid cell;
 //   neighbour  a neighbour's level changed (the fans of the strip between them);
 //   factor     none of those: only the morph factors moved (the camera's own motion).
+// Each class also counts apart the samples of blocks with nodata or beside one: such blocks
+// are drawn as cells around their nodata (HoleCells.h) and their shared sides at full
+// resolution, which no level's drawing nests in, and they do not morph.
 // A switch whose morphed surface at factor 1 were the next level's would move nothing, so
 // the switch and neighbour classes measure where the levels do not nest, which geomorphing's
 // level path hides by switching blocks far below their budget (benchmarks-core.md, session
@@ -68,7 +71,23 @@ struct CauseTally
   long samples = 0; // samples over the threshold, summed over frames
   int frames = 0;   // frames with at least one
   double worst = 0.0;
+  long nodataSamples = 0; // of them, in a block with nodata or beside one
+  double nodataWorst = 0.0;
 };
+
+// Whether `block` or a neighbour across one of its sides holds nodata: its drawing there
+// follows HoleCells.h and full-resolution sides (Quadtree::sideAtFullResolution).
+bool atNodata(const gmm::Quadtree& qt, int block)
+{
+  for (int side = 0; side < 4; ++side)
+  {
+    if (qt.sideAtFullResolution(block, side))
+    {
+      return true;
+    }
+  }
+  return false;
+}
 
 // The block whose cell holds sample (i, j) (bandOfSample: the cell to its north-east, the
 // last band for the last sample), and the sample's position in it.
@@ -220,6 +239,11 @@ int main(int argc, char** argv)
           }
           ++tally[cause].samples;
           tally[cause].worst = std::max(tally[cause].worst, pop);
+          if (atNodata(qt, b))
+          {
+            ++tally[cause].nodataSamples;
+            tally[cause].nodataWorst = std::max(tally[cause].nodataWorst, pop);
+          }
           seen[cause] = true;
         }
       }
@@ -243,10 +267,12 @@ int main(int argc, char** argv)
               "frames' worst %.3f px, %.0f triangles a frame\n",
     what.c_str(), block, tau, mode, frames, stepBlocks, worstPop, meanOfFrameWorst, triangles);
   std::printf("samples moving more than %g px between frames, by cause:\n", threshold);
-  std::printf("| cause | samples | frames | worst px |\n|---|---|---|---|\n");
+  std::printf("| cause | samples | frames | worst px | samples at nodata | worst px at nodata |\n"
+              "|---|---|---|---|---|---|\n");
   for (int c = 0; c < CauseCount; ++c)
   {
-    std::printf("| %s | %ld | %d | %.3f |\n", kCauseNames[c], tally[c].samples, tally[c].frames, tally[c].worst);
+    std::printf("| %s | %ld | %d | %.3f | %ld | %.3f |\n", kCauseNames[c], tally[c].samples, tally[c].frames,
+      tally[c].worst, tally[c].nodataSamples, tally[c].nodataWorst);
   }
   return 0;
 }
