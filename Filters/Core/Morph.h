@@ -32,6 +32,7 @@
 
 #include "Heightfield.h"
 #include "MorphBounds.h"
+#include "MorphMemos.h"
 #include "MorphRamp.h"
 #include "Quadtree.h"
 #include "Tessellate.h"

@@ -1,6 +1,7 @@
 // Geomorphing's part errors bounded from the error table (MorphBounds.h, tablePartBounds):
 // what lets a frame skip measuring the parts of blocks whose budget is loose.
 #include "MorphBounds.h"
+#include "MorphMemos.h"
 
 #include "RasterError.h"
 #include "Tessellate.h"
@@ -30,35 +31,6 @@ bool nestsInTarget(const Quadtree& qt, int block, int m, int target)
 }
 
 } // namespace
-
-float SidePolylineMemo::at(const Heightfield& hf, const Quadtree& qt, int block, int side, int level,
-  EmitScratch& scratch)
-{
-  const int perSide = qt.blockTopLevels[block] + 1;
-  if (level < 0 || level >= perSide)
-  {
-    return sidePolylineError(hf, qt, block, side, level, scratch);
-  }
-  if (this->first[block] < 0)
-  {
-    this->first[block] = static_cast<int32_t>(this->values.size());
-    this->values.resize(this->values.size() + 4 * static_cast<std::size_t>(perSide),
-      std::numeric_limits<float>::quiet_NaN());
-  }
-  const std::size_t at = static_cast<std::size_t>(this->first[block]) + static_cast<std::size_t>(side * perSide + level);
-  float& v = this->values[at];
-  if (std::isnan(v))
-  {
-    v = sidePolylineError(hf, qt, block, side, level, scratch);
-  }
-  return v;
-}
-
-void SidePolylineMemo::reset(int blocks)
-{
-  this->first.assign(static_cast<std::size_t>(blocks), -1);
-  this->values.clear();
-}
 
 unsigned tablePartBounds(const Heightfield& hf, const ErrorTable& table, const Quadtree& qt, int block,
   const BlockConfig& config, int target, const std::array<int, 4>& edgeTarget, unsigned parts, double budget,
