@@ -178,13 +178,14 @@ void yieldToCoarserEdges(const Quadtree& qt, const std::vector<int8_t>& levels, 
         continue; // not a coarser neighbour's edge
       }
       // The edge's factor that draws it as in the last frame: its own, or 1 where it was
-      // drawn at its target level, unmorphed (its setter refined since).
+      // drawn at its target level (its setter refined since), the nearest it comes to the
+      // last frame's edge however far that had morphed on toward the next level.
       double wasT = 0.0;
       if (was.level == e.level && was.target == e.target)
       {
         wasT = was.t;
       }
-      else if (was.level == e.target && (was.target < 0 || was.t <= 0.0f))
+      else if (was.level == e.target)
       {
         wasT = 1.0;
       }

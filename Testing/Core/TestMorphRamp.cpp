@@ -578,18 +578,21 @@ TEST(MorphRamp, MergesOnThePathDoNotPop)
 // the neighbour's finer strip was phased in along its path: rampBesideFinerNeighbours); on
 // the one of seed 1, a block that coarsened at once when the neighbour that held it on its
 // path left the view (0.393 px before a neighbour out of view counted where its path would
-// put it).
+// put it); on the one of seed 4, two neighbours refining in the same frame, the coarser one's
+// edge dropped from the level it had drawn, morphed a little further on (factor 0.002), to
+// the finer level (0.419 px before the finer block yielded to that edge too).
 TEST(MorphRamp, SwitchesMoveWithinTheIssuesBound)
 {
   struct Case
   {
     int n, seed, frames;
   };
-  for (const Case c : { Case{ 1025, 1, 80 }, Case{ 513, 2, 80 }, Case{ 513, 3, 80 }, Case{ 513, 1, 80 } })
+  for (const Case c :
+    { Case{ 1025, 1, 80 }, Case{ 513, 2, 80 }, Case{ 513, 3, 80 }, Case{ 513, 1, 80 }, Case{ 513, 4, 80 } })
   {
     const std::string what = std::to_string(c.n) + "^2, seed " + std::to_string(c.seed);
     const FlightOutcome byDefault = flyByDefault(gmm::makeSyntheticTerrain(c.n, c.n, 30.0, c.seed), c.frames, what);
-    EXPECT_LE(byDefault.worstPop, 0.3) << what; // issue #51's bound (0.267, 0.275, 0.170, 0.151 px)
+    EXPECT_LE(byDefault.worstPop, 0.3) << what; // issue #51's bound (0.267, 0.275, 0.170, 0.151, 0.280 px)
   }
 }
 
