@@ -226,7 +226,7 @@ const char* const kDrape =
   "vec4 gmmDrapeColor() { return texture(gmmDrape, gmmGridVSOutput * gmmDrapeMap.xy + gmmDrapeMap.zw); }\n";
 
 // Vertex placement and geomorphing in the vertex shader, mirroring gmm::morphedHeight
-// (Morph.cpp) line by line: the block of sample (i, j) from its column's and row's entries
+// (MorphTargets.cpp) line by line: the block of sample (i, j) from its column's and row's entries
 // in gmmSampleBands (the band search of Quadtree.h's bandOfSample, tabulated:
 // vtkGeoMipMapMorphTexture.h), then the edge or the block it lies on, its target level and
 // factor. An edge vertex starts on the edge's polyline at its level (a glided edge's

@@ -141,7 +141,7 @@ inline bool ringCellAntiDiagonal(int u, int v, int nu, int nv)
 // Height at (fx, fy) in [0, 1]^2 of a quad with corner heights h00 (its (i0, j0)), h10, h01
 // and h11, on its two triangles: split along (i0, j0)-(i1, j1), or (i1, j0)-(i0, j1) when
 // `anti` (the split of cellAntiDiagonal and fullResolutionAntiDiagonal). The one
-// interpolation of a split cell: morph targets (Morph.cpp; the vertex shader mirrors it) and
+// interpolation of a split cell: morph targets (MorphTargets.cpp; the vertex shader mirrors it) and
 // the full-resolution surface (RayCast.cpp).
 inline double splitQuadHeight(double h00, double h10, double h01, double h11, double fx, double fy, bool anti)
 {
