@@ -22,7 +22,10 @@
 //
 //   measure_pop_causes [--tau 2] [--range 3] [--block 32] [--n 1025] [--seed 1] [--step 0.04]
 //                      [--frames 120] [--threshold 0.3] [--no-merges] [--measure-samples N]
-//                      [--amplitude 1500] [--hgt FILE]
+//                      [--amplitude 1500] [--hgt FILE] [--list]
+//
+// --list also prints each frame whose worst pop is over the threshold: where (sample, block),
+// its cause, and the block's level and morph factor in the two frames, to start from.
 //
 // --amplitude sets the fractal's (metres); --hgt flies over an SRTM tile instead
 // (Testing/Core/HgtTile.h: its samples on a metric grid of its spacing).
@@ -128,6 +131,7 @@ int main(int argc, char** argv)
   const double amplitude = argOr(argc, argv, "--amplitude", 1500.0);
   const double threshold = argOr(argc, argv, "--threshold", 0.3);
   const bool merges = gmm::FrameSettings().geomorphMerges && !flag(argc, argv, "--no-merges");
+  const bool list = flag(argc, argv, "--list");
   const double measureSamples =
     argOr(argc, argv, "--measure-samples", static_cast<double>(gmm::FrameSettings().geomorphMeasureSamples));
   if (!(tau >= 0.0) || block < 4 || n < 3 || frames < 2 || !(threshold > 0.0) || !(measureSamples >= 0.0) ||
@@ -164,6 +168,7 @@ int main(int argc, char** argv)
   cache.measureLimit = static_cast<std::size_t>(measureSamples);
   std::vector<double> previousZ;
   std::vector<int8_t> previousLevels;
+  std::vector<float> factors, previousFactors; // per block: the morph factor drawn (0 without)
   CauseTally tally[CauseCount];
   double worstPop = 0.0, meanOfFrameWorst = 0.0;
   double triangles = 0.0;
@@ -184,10 +189,12 @@ int main(int argc, char** argv)
       gmm::computeMorph(hf, qt, e.levels(), e.pixelFactors(), gmm::morphErrorBudget(e.stats(), tau), cache,
         mf, e.morphRamp(), &e.drawnBlocks(), &e.drawnConfigs(), &e.errorTable());
       z = gmmtest::morphedHeights(e, mf);
+      factors.assign(mf.blockT.begin(), mf.blockT.end());
     }
     else
     {
       z.assign(hf.z.begin(), hf.z.end());
+      factors.assign(static_cast<std::size_t>(qt.blockCount()), 0.0f);
     }
     const gmmtest::SurfaceSample surface = gmmtest::sampleSurface(hf, e.indices(), z.data());
     const std::vector<int8_t>& levels = e.levels();
@@ -195,6 +202,8 @@ int main(int argc, char** argv)
     {
       const gmmtest::MyCamera cam = gmmtest::makeCamera(v);
       double frameWorst = 0.0;
+      int worstI = 0, worstJ = 0;
+      Cause worstCause = Factor;
       bool seen[CauseCount] = {};
       for (int j = 0; j < hf.ny; ++j)
       {
@@ -210,7 +219,13 @@ int main(int argc, char** argv)
             continue;
           }
           const double pop = std::hypot(px - qx, py - qy);
-          frameWorst = std::max(frameWorst, pop);
+          const bool worst = pop > frameWorst;
+          if (worst)
+          {
+            frameWorst = pop;
+            worstI = i;
+            worstJ = j;
+          }
           if (pop <= threshold)
           {
             continue;
@@ -237,6 +252,10 @@ int main(int argc, char** argv)
               }
             }
           }
+          if (worst)
+          {
+            worstCause = cause;
+          }
           ++tally[cause].samples;
           tally[cause].worst = std::max(tally[cause].worst, pop);
           if (atNodata(qt, b))
@@ -251,11 +270,21 @@ int main(int argc, char** argv)
       {
         tally[c].frames += seen[c] ? 1 : 0;
       }
+      if (list && frameWorst > threshold)
+      {
+        int bi = 0, bj = 0;
+        const int b = blockOfSample(qt, worstI, worstJ, bi, bj);
+        std::printf("frame %d: %.3f px at sample (%d, %d), block %d (%d, %d in it)%s: %s; level %d -> %d, "
+                    "factor %.3f -> %.3f\n",
+          f, frameWorst, worstI, worstJ, b, bi, bj, atNodata(qt, b) ? ", at nodata" : "", kCauseNames[worstCause],
+          previousLevels[b], levels[b], previousFactors[b], factors[b]);
+      }
       worstPop = std::max(worstPop, frameWorst);
       meanOfFrameWorst += frameWorst / (frames - 1);
     }
     previousZ = surface.z;
     previousLevels = levels;
+    previousFactors = factors;
   }
   char mode[64] = "no geomorphing";
   if (morphing)
