@@ -27,16 +27,9 @@ bool mergeNestsInBlocks(const Quadtree& qt, int node)
     {
       const int b = qt.blockIndex(c, r);
       const int w = qt.blockWidth(b), h = qt.blockHeight(b);
-      if (blockShape(w, h, qt.blockTopLevel(b)) != BlockShape::OneQuad)
+      if (blockShape(w, h, qt.blockTopLevel(b)) != BlockShape::OneQuad || qt.anySideAtFullResolution(b))
       {
         return false;
-      }
-      for (int side = 0; side < 4; ++side)
-      {
-        if (qt.sideAtFullResolution(b, side))
-        {
-          return false;
-        }
       }
     }
   }

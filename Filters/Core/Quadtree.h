@@ -123,6 +123,23 @@ struct Quadtree
     // A DEM without nodata (no bits) has none: skip the neighbour lookup on hot paths.
     return !nodataBits.empty() && sideAtFullResolutionBeside(block, blockNeighbours(block)[side]);
   }
+  // Whether any side of `block` may be (sideAtFullResolution): the block or a neighbour
+  // across one of its sides holds nodata.
+  bool anySideAtFullResolution(int block) const
+  {
+    if (nodataBits.empty())
+    {
+      return false;
+    }
+    for (int side = 0; side < 4; ++side)
+    {
+      if (sideAtFullResolution(block, side))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
   // The same for the side shared with `neighbour` (blockNeighbours' entry, -1 at the DEM's
   // border), for callers that have the neighbours already.
   bool sideAtFullResolutionBeside(int block, int neighbour) const

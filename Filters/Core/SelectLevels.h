@@ -11,10 +11,7 @@
 #include "Quadtree.h"
 #include "View.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 namespace gmm

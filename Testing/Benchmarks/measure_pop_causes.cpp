@@ -9,9 +9,10 @@
 //              (side strips, fans toward the edge level), or an inner-grid cell;
 //   neighbour  a neighbour's level changed (the fans of the strip between them);
 //   factor     none of those: only the morph factors moved (the camera's own motion).
-// Each class also counts apart the samples of blocks with nodata or beside one: such blocks
-// are drawn as cells around their nodata (HoleCells.h) and their shared sides at full
-// resolution, which no level's drawing nests in, and they do not morph.
+// Each class also counts apart the samples of blocks with nodata or beside one
+// (Quadtree::anySideAtFullResolution): blocks with nodata do not morph, and neither their
+// cells around the nodata (HoleCells.h) nor the sides at full resolution that they share
+// nest in the next level's drawing.
 // A switch whose morphed surface at factor 1 were the next level's would move nothing, so
 // the switch and neighbour classes measure where the levels do not nest, which geomorphing's
 // level path hides by switching blocks far below their budget (benchmarks-core.md, session
@@ -78,19 +79,6 @@ struct CauseTally
   double nodataWorst = 0.0;
 };
 
-// Whether `block` or a neighbour across one of its sides holds nodata: its drawing there
-// follows HoleCells.h and full-resolution sides (Quadtree::sideAtFullResolution).
-bool atNodata(const gmm::Quadtree& qt, int block)
-{
-  for (int side = 0; side < 4; ++side)
-  {
-    if (qt.sideAtFullResolution(block, side))
-    {
-      return true;
-    }
-  }
-  return false;
-}
 
 // The block whose cell holds sample (i, j) (bandOfSample: the cell to its north-east, the
 // last band for the last sample), and the sample's position in it.
@@ -258,7 +246,7 @@ int main(int argc, char** argv)
           }
           ++tally[cause].samples;
           tally[cause].worst = std::max(tally[cause].worst, pop);
-          if (atNodata(qt, b))
+          if (qt.anySideAtFullResolution(b))
           {
             ++tally[cause].nodataSamples;
             tally[cause].nodataWorst = std::max(tally[cause].nodataWorst, pop);
@@ -276,8 +264,8 @@ int main(int argc, char** argv)
         const int b = blockOfSample(qt, worstI, worstJ, bi, bj);
         std::printf("frame %d: %.3f px at sample (%d, %d), block %d (%d, %d in it)%s: %s; level %d -> %d, "
                     "factor %.3f -> %.3f\n",
-          f, frameWorst, worstI, worstJ, b, bi, bj, atNodata(qt, b) ? ", at nodata" : "", kCauseNames[worstCause],
-          previousLevels[b], levels[b], previousFactors[b], factors[b]);
+          f, frameWorst, worstI, worstJ, b, bi, bj, qt.anySideAtFullResolution(b) ? ", at nodata" : "",
+          kCauseNames[worstCause], previousLevels[b], levels[b], previousFactors[b], factors[b]);
       }
       worstPop = std::max(worstPop, frameWorst);
       meanOfFrameWorst += frameWorst / (frames - 1);
