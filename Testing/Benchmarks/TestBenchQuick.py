@@ -11,6 +11,8 @@ Usage: TestBenchQuick.py <path to geomipmap-bench> <scratch folder>. Checks:
   a fill option without it is bad input;
 - --geomorph-range 3 draws more triangles than the default range (2) on the synthetic
   terrain, within tau both; 0 is bad input;
+- the fill floor (ours at its coarsest) draws fewer triangles than ours at any tau, frame by
+  frame, and summary.md reports every method against it ('x floor');
 - a deliberately coarse mesh (every 16th sample) measures more than tau = 1 px on the
   same flight, through the same measure (vtkGeoMipMapScreenError) and camera set-up.
 """
@@ -142,7 +144,7 @@ with open(os.path.join(scratch, "bench.png"), "rb") as f:
 with open(os.path.join(scratch, "frames.csv"), newline="") as f:
     rows = list(csv.DictReader(f))
 methods = {r["method"] for r in rows}
-for m in ("brute", "ours", "ours-vn", "ours-vn-nomorph", "greedy", "uniform", "quadric"):
+for m in ("brute", "ours", "ours-vn", "ours-vn-nomorph", "floor", "greedy", "uniform", "quadric"):
     if m not in methods:
         failures.append(f"method {m} missing from frames.csv")
 for r in rows:
@@ -164,6 +166,17 @@ for tau in sorted({r["tau"] for r in rows if r["method"] == "ours"}):
         failures.append(f"tau {tau}: ours-vn-nomorph draws {count['ours-vn-nomorph']} "
                         f"triangles over the flight, not fewer than ours' {count['ours']}: "
                         f"is geomorphing off?")
+# The floor is ours at its coarsest: on every frame it draws fewer triangles than ours at
+# the finest tau (1), and no more than at any other.
+floor = {r["frame"]: int(r["triangles"]) for r in rows if r["method"] == "floor"}
+for r in (r for r in rows if r["method"] == "ours"):
+    f_tri, o_tri = floor.get(r["frame"], -1), int(r["triangles"])
+    if not (0 < f_tri < o_tri if float(r["tau"]) == 1.0 else 0 < f_tri <= o_tri):
+        failures.append(f"frame {r['frame']}: the floor draws {f_tri} triangles, ours at tau "
+                        f"{r['tau']} {o_tri}")
+with open(os.path.join(scratch, "summary.md")) as f:
+    if "| x floor |" not in f.read():
+        failures.append("summary.md has no 'x floor' column")
 
 # The coarse mesh, through the bench's own pieces (same terrain, flight and camera).
 import geomipmap  # noqa: E402

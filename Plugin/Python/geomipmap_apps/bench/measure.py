@@ -82,6 +82,44 @@ class Bench:
         self.scene.renderer.AddActor(a)
         return a
 
+    def add_floor(self, tau):
+        """The fill floor: a second LOD mapper as the scene's is configured (block size,
+        geomorphing settings, colouring, the actor's property) at pixel error `tau`, with its
+        own actor and its own filter for the measured error. Its own, so that it keeps its
+        own levels and morph history: the scene's mapper, shared by ours' methods, would
+        otherwise follow a frame at the coarsest. Returns (actor, mapper, mesh_for_frame)."""
+        import geomipmap
+
+        ours = self.scene.mapper
+        m = geomipmap.vtkGeoMipMapMapper()
+        m.SetInputData(self.image)
+        m.SetBlockSize(ours.GetBlockSize())
+        m.SetGeomorphRange(ours.GetGeomorphRange())
+        m.SetGeomorphMeasureSamples(ours.GetGeomorphMeasureSamples())
+        m.SetPixelError(tau)
+        m.SetLookupTable(ours.GetLookupTable())
+        m.SetScalarRange(ours.GetScalarRange())
+        m.SetColorModeToMapScalars()
+        m.ScalarVisibilityOn()
+        a = vtkActor()
+        a.SetMapper(m)
+        a.SetProperty(self.scene.actor.GetProperty())
+        self.scene.renderer.AddActor(a)
+        f = geomipmap.vtkGeoMipMapFilter()
+        f.SetInputData(self.image)
+        f.SetCamera(self.scene.renderer.GetActiveCamera())
+        f.SetViewportSize(*self.size)
+        f.SetBlockSize(ours.GetBlockSize())
+        f.SetGeomorphRange(ours.GetGeomorphRange())
+        f.SetGeomorphMeasureSamples(ours.GetGeomorphMeasureSamples())
+        f.SetPixelError(tau)
+
+        def mesh(frame):
+            f.Modified()
+            f.Update()
+            return f.GetOutput()
+        return a, m, mesh
+
     def depth(self):
         w, h = self.size
         buf = vtkFloatArray()

@@ -30,6 +30,9 @@ KNOWN_FILES = {
 
 # The mapper's configurations measured: (VertexNormals, Geomorphing) per method.
 OURS_SETTINGS = {"ours": (False, True), "ours-vn": (True, True), "ours-vn-nomorph": (True, False)}
+# The fill floor: ours' default configuration at this pixel error, so large that every block
+# takes its coarsest level and far nodes merge as far as the tree allows.
+FLOOR_TAU = 1e6
 
 
 class Config:
@@ -129,11 +132,15 @@ def _build(label, args, methods, over, budget_gb, bench, heights, image, skip, o
             configs.append(Config("brute", None, bench.add_mesh(full), lambda f: full))
     m = bench.scene.mapper
 
-    def ours_extra(row):
-        row["lod_ms"] = m.GetLastUpdateTime() * 1000.0
-        row["upload_ms"] = m.GetLastIndexUploadTime() * 1000.0
-        row["render_ms"] = row["total_ms"] - row["lod_ms"] - row["upload_ms"]
-        row["certified_px"] = m.GetMaximumScreenSpaceError()
+    def lod_columns(m):
+        def extra(row):
+            row["lod_ms"] = m.GetLastUpdateTime() * 1000.0
+            row["upload_ms"] = m.GetLastIndexUploadTime() * 1000.0
+            row["render_ms"] = row["total_ms"] - row["lod_ms"] - row["upload_ms"]
+            row["certified_px"] = m.GetMaximumScreenSpaceError()
+        return extra
+
+    ours_extra = lod_columns(m)
 
     def ours_before(tau, vertex_normals, geomorphing):
         def before():
@@ -151,6 +158,13 @@ def _build(label, args, methods, over, budget_gb, bench, heights, image, skip, o
                                   lambda f, tau=tau, g=geomorphing: bench.ours_mesh(tau, g),
                                   before=ours_before(tau, vertex_normals, geomorphing),
                                   extra=ours_extra))
+    if "floor" in methods:
+        if over["floor"]:
+            skip("floor", f"needs about {_gb('floor', heights.nx * heights.ny):.1f} GB "
+                 f"(> {budget_gb:.1f} GB budget)")
+        else:
+            actor, mapper, mesh = bench.add_floor(FLOOR_TAU)
+            configs.append(Config("floor", FLOOR_TAU, actor, mesh, extra=lod_columns(mapper)))
     targets = _targets(args, bench)
     nodata = not np.isfinite(heights.z).all()
     for mth in ("greedy", "uniform", "quadric"):
