@@ -79,11 +79,13 @@ vtkGeoMipMapGPUTerrain::Result vtkGeoMipMapGPUTerrain::Update(
     ++r.Uploads;
   }
   // Slopes for the fragment normals, only while lit (made from the engine's float heights);
-  // vertex normals take them from the heights in the vertex shader.
+  // vertex normals take them from the heights in the vertex shader. The slope texture is
+  // kept while asked for, also through frames shaded per vertex (the mapper's automatic
+  // normals switch between the two with the frame's error).
   this->Lit = in.Lit;
   this->Shading.VertexNormals = in.Lit && in.VertexNormals;
   this->Shading.SlopesFromHeights = in.Lit && !in.SlopeTexture && !in.VertexNormals;
-  const bool slopeTexture = in.Lit && in.SlopeTexture && !in.VertexNormals;
+  const bool slopeTexture = in.Lit && in.SlopeTexture;
   if (in.Lit && !slopeTexture)
   {
     this->Slopes.Release(win);
@@ -168,7 +170,8 @@ void vtkGeoMipMapGPUTerrain::Bind()
   {
     this->HeightsUnit = this->Heights.Activate();
   }
-  this->SlopesUnit = this->Lit && this->Slopes.HasData() ? this->Slopes.Activate() : -1;
+  this->SlopesUnit =
+    this->Lit && !this->Shading.VertexNormals && this->Slopes.HasData() ? this->Slopes.Activate() : -1;
   this->ColorsUnit = c == O::MapScalars || c == O::DirectColors ? this->Colors.Activate() : -1;
   this->TableUnit = c == O::MapHeights || c == O::MapScalars ? this->Table.Activate() : -1;
   this->DrapeUnit = this->Shading.Drape ? this->Drape.Activate() : -1;

@@ -42,8 +42,8 @@ public:
     vtkDataArray* Heights = nullptr;
     const gmm::Heightfield* HF = nullptr;
     bool Lit = false;           // slopes wanted for the fragment normals
-    bool SlopeTexture = false;  // lit: slopes from a texture, else from the heights per fragment
-    bool VertexNormals = false; // lit: normals per vertex from the heights (no slopes kept)
+    bool SlopeTexture = false;  // lit: slopes from a texture (kept), else from the heights per fragment
+    bool VertexNormals = false; // lit: this frame's normals per vertex from the heights
     int MaximumTileSize = 0;    // 0: GL_MAX_TEXTURE_SIZE
     bool ShareHeights = true;   // read the heights in place where the renderer allows
                                 // (vtkGeoMipMapSharedHeights::Usable)

@@ -83,6 +83,7 @@ struct vtkGeoMipMapMapper::Internals
 
   // GPU data, all in the context of Window.
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+  bool SoftwareRenderer = false; // Window's OpenGL runs on the CPU (vtkGeoMipMapSoftwareRenderer)
   vtkGeoMipMapGPUTerrain GPU;
   // The texture of this frame's edge levels and geomorph factors; Morphing while drawn so.
   vtkGeoMipMapMorphTexture MorphTexture;
@@ -361,6 +362,33 @@ double vtkGeoMipMapMapper::GetMaximumScreenSpaceError() const
   const gmm::Frame& f = in.Driver.frame();
   return f.morphed && !in.Morphing ? f.selectionScreenError : f.stats.maxScreenError;
 }
+double vtkGeoMipMapMapper::GetAutomaticVertexNormalsPixels()
+{
+  // Measured on real DEMs (decision record 004): at a certified pixel, normals per vertex
+  // and per fragment differ from the full-resolution render on the same share of pixels;
+  // at 2 px per vertex already differs on up to 1.4x as many.
+  return 1.0;
+}
+const char* vtkGeoMipMapMapper::GetNormalModeAsString()
+{
+  switch (this->NormalMode)
+  {
+    case NORMALS_PER_VERTEX:
+      return "PerVertex";
+    case NORMALS_PER_FRAGMENT:
+      return "PerFragment";
+    default:
+      return "Automatic";
+  }
+}
+void vtkGeoMipMapMapper::SetVertexNormals(bool on)
+{
+  this->SetNormalMode(on ? NORMALS_PER_VERTEX : NORMALS_PER_FRAGMENT);
+}
+bool vtkGeoMipMapMapper::GetVertexNormals()
+{
+  return this->NormalMode == NORMALS_PER_VERTEX;
+}
 double vtkGeoMipMapMapper::GetMaximumGeometricError() const
 {
   return this->LastFrameDrawn ? this->Internal->Stats().maxGeometricError : 0.0;
@@ -411,7 +439,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     // Heights on the GPU, and the slope texture (for lighting) where asked for. (Heights
     // read in place take none, but whether they can is known only in a render.)
     double need = samples * vtkGeoMipMapSampleTexture::BytesPerTexel(format);
-    if (this->SlopeTexture && !this->VertexNormals)
+    if (this->SlopeTexture && this->NormalMode != NORMALS_PER_VERTEX)
     {
       need += samples * vtkGeoMipMapSampleTexture::BytesPerTexel(vtkGeoMipMapSampleTexture::Slopes16F);
     }
@@ -560,7 +588,8 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   {
     this->ReleaseWindowResources(); // frees in the old window, or forgets a vanished one's
     win->MakeCurrent();
-    if (GlobalRetainHeapOnSoftwareRenderer && vtkGeoMipMapSoftwareRenderer::IsCurrent())
+    in.SoftwareRenderer = vtkGeoMipMapSoftwareRenderer::IsCurrent();
+    if (GlobalRetainHeapOnSoftwareRenderer && in.SoftwareRenderer)
     {
       vtkGeoMipMapSoftwareRenderer::RetainHeap();
     }
@@ -638,6 +667,11 @@ void vtkGeoMipMapMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
+  // Automatic normals: per vertex where the per-fragment normal is most of a fill-bound
+  // frame's cost (OpenGL on the CPU) and the frame is certified within a pixel.
+  this->LastFrameVertexNormals = this->NormalMode == NORMALS_PER_VERTEX ||
+    (this->NormalMode == NORMALS_AUTOMATIC && in.SoftwareRenderer &&
+      stats.maxScreenError <= GetAutomaticVertexNormalsPixels());
   if (!this->UpdateTextures(win, image, act))
   {
     this->LastFrameDrawn = false;
@@ -688,8 +722,8 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   gpu.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
   gpu.MaximumTileSize = this->MaximumTileSize;
   gpu.ShareHeights = this->ShareHeights;
-  gpu.SlopeTexture = this->SlopeTexture;
-  gpu.VertexNormals = this->VertexNormals;
+  gpu.SlopeTexture = this->SlopeTexture && this->NormalMode != NORMALS_PER_VERTEX;
+  gpu.VertexNormals = this->LastFrameVertexNormals;
   // Colouring: the array VTK's own mappers would colour by, on the GPU as well.
   int cellFlag = 0;
   gpu.Color = this->ScalarVisibility
@@ -1148,7 +1182,8 @@ void vtkGeoMipMapMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumTileSize: " << this->MaximumTileSize << "\n";
   os << indent << "ShareHeights: " << this->ShareHeights << "\n";
   os << indent << "SlopeTexture: " << this->SlopeTexture << "\n";
-  os << indent << "VertexNormals: " << this->VertexNormals << "\n";
+  os << indent << "NormalMode: " << this->GetNormalModeAsString() << "\n";
+  os << indent << "LastFrameVertexNormals: " << this->LastFrameVertexNormals << "\n";
   os << indent << "FreezeLevelOfDetail: " << this->FreezeLevelOfDetail << "\n";
   os << indent << "FollowAllocatedRenderTime: " << this->FollowAllocatedRenderTime << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";

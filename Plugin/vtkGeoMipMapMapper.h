@@ -25,9 +25,11 @@
  * and shear included) and HeightScale; culling follows the camera's exact projection
  * (window centre and view shear included); the bound assumes no view shear.
  *
- * Shading does not depend on the level drawn: the fragment shader computes each
- * fragment's normal from the full-resolution heights (central differences, interpolated
- * on the full-resolution triangle under the fragment), and its scalar colour from the
+ * Shading comes from the full-resolution heights: the fragment shader computes each
+ * fragment's normal from them (central differences, interpolated on the full-resolution
+ * triangle under the fragment), or the vertex shader each drawn vertex's (NormalMode: by
+ * default per fragment on a GPU, per vertex on a CPU renderer in frames certified within
+ * a pixel), and each fragment's scalar colour from the
  * full-resolution samples of the colouring array (interpolated, then mapped through the
  * lookup table: InterpolateScalarsBeforeMapping is implied). Colouring: point scalars
  * (the heights, or another point array selected with SelectColorArray / ScalarMode),
@@ -232,22 +234,59 @@ public:
   vtkBooleanMacro(SlopeTexture, bool);
   ///@}
 
+  /** Where lit terrain takes its normals (NormalMode). */
+  enum NormalModes
+  {
+    NORMALS_AUTOMATIC = 0,
+    NORMALS_PER_VERTEX = 1,
+    NORMALS_PER_FRAGMENT = 2
+  };
+
   ///@{
   /**
-   * Lit terrain shaded with normals at the drawn vertices instead of at every fragment:
-   * each vertex takes the full-resolution normal of its own sample (the rule above, four
-   * height fetches a vertex), and the triangle interpolates it, as vtkPolyDataMapper
-   * shades a mesh with point normals. Inside a coarse triangle the shading then loses the
-   * detail of the samples it skips (the geometry keeps its certified error), and a
-   * fragment fetches nothing for its normal, so a frame whose cost is its pixels is
-   * cheaper (on llvmpipe the default per-fragment normal is most of that cost:
-   * geomipmap-bench at 4097^2 draws 1.2 - 2.2x faster frames with it). Overrides
-   * SlopeTexture (no slope texture is made). Off by default.
+   * Where lit terrain takes its normals, always from the full-resolution slopes:
+   * - NORMALS_PER_FRAGMENT: at every fragment (the rule and sources above). Inside a coarse
+   *   triangle the shading keeps the detail of the samples the geometry skips.
+   * - NORMALS_PER_VERTEX: at the drawn vertices, each the full-resolution normal of its own
+   *   sample (the rule above, four height fetches a vertex), interpolated across the
+   *   triangle as vtkPolyDataMapper shades a mesh with point normals. A fragment fetches
+   *   nothing for its normal, so a frame whose cost is its pixels is cheaper (on llvmpipe
+   *   the per-fragment normal is most of that cost), but inside a coarse triangle the
+   *   shading loses the detail of the samples it skips (the geometry keeps its certified
+   *   error). Overrides SlopeTexture.
+   * - NORMALS_AUTOMATIC (default): per fragment on a GPU, where ten height fetches a
+   *   fragment are cheap. Where OpenGL runs on the CPU (Mesa's llvmpipe or softpipe), where
+   *   the per-fragment normal is most of a fill-bound frame, per vertex while the frame's
+   *   certified error (GetMaximumScreenSpaceError) is at most
+   *   GetAutomaticVertexNormalsPixels() (1 px), per fragment above: within a pixel the two
+   *   differ little from the full-resolution render, above it per vertex loses detail
+   *   (decision record 004 has the figures).
    */
-  vtkSetMacro(VertexNormals, bool);
-  vtkGetMacro(VertexNormals, bool);
-  vtkBooleanMacro(VertexNormals, bool);
+  vtkSetClampMacro(NormalMode, int, NORMALS_AUTOMATIC, NORMALS_PER_FRAGMENT);
+  vtkGetMacro(NormalMode, int);
+  void SetNormalModeToAutomatic() { this->SetNormalMode(NORMALS_AUTOMATIC); }
+  void SetNormalModeToPerVertex() { this->SetNormalMode(NORMALS_PER_VERTEX); }
+  void SetNormalModeToPerFragment() { this->SetNormalMode(NORMALS_PER_FRAGMENT); }
+  const char* GetNormalModeAsString();
   ///@}
+
+  /** The largest certified error (pixels) at which NORMALS_AUTOMATIC shades per vertex on a
+   * renderer that runs on the CPU. */
+  static double GetAutomaticVertexNormalsPixels();
+
+  ///@{
+  /**
+   * NormalMode by a switch: on is NORMALS_PER_VERTEX, off NORMALS_PER_FRAGMENT; Get is
+   * true for NORMALS_PER_VERTEX only.
+   */
+  void SetVertexNormals(bool on);
+  bool GetVertexNormals();
+  void VertexNormalsOn() { this->SetVertexNormals(true); }
+  void VertexNormalsOff() { this->SetVertexNormals(false); }
+  ///@}
+
+  /** Whether the last frame drawn was shaded with normals per vertex (NormalMode). */
+  vtkGetMacro(LastFrameVertexNormals, bool);
 
   /** True when the last render read the heights in place (see ShareHeights). */
   bool GetHeightsShared() const;
@@ -598,7 +637,8 @@ protected:
   int MaximumTileSize = 0;
   bool ShareHeights = true;
   bool SlopeTexture = false;
-  bool VertexNormals = false;
+  int NormalMode = NORMALS_AUTOMATIC;
+  bool LastFrameVertexNormals = false;
   double LastUpdateTime = 0.0;
   int NumberOfHeightUploads = 0;
   int NumberOfIndexUploads = 0;

@@ -144,7 +144,7 @@ with open(os.path.join(scratch, "bench.png"), "rb") as f:
 with open(os.path.join(scratch, "frames.csv"), newline="") as f:
     rows = list(csv.DictReader(f))
 methods = {r["method"] for r in rows}
-for m in ("brute", "ours", "ours-vn", "ours-vn-nomorph", "floor", "greedy", "uniform", "quadric"):
+for m in ("brute", "ours", "ours-fn", "ours-vn", "ours-vn-nomorph", "floor", "greedy", "uniform", "quadric"):
     if m not in methods:
         failures.append(f"method {m} missing from frames.csv")
 for r in rows:

@@ -7,7 +7,8 @@ values, PNG frames that are not blank and show terrain under a sky, the summary 
 stdout, the measured screen error of every frame within tau (513 x 513 at tau 2: measured
 1.2 .. 1.6 px; with the engine's projection halved, 2.2 .. 2.7 px, so the check bites);
 then a line flight as a command (the launcher) with terrain following (--clearance) and
---every / --seconds, the same with --vertex-normals (similar pictures, not the same), and
+--every / --seconds, the same with --vertex-normals (similar pictures, not the same) and
+with --normals fragment (the same pictures: automatic normals are per fragment at tau 2), and
 with --no-geomorphing (fewer triangles: geomorphing's level path holds blocks finer than tau
 needs).
 """
@@ -54,7 +55,8 @@ check(len(read_csv(os.path.join(d2, "flight.csv"))) == 8, "--seconds 1 --fps 8: 
 check(len(glob.glob(os.path.join(d2, "frame_*.png"))) == 2, "--every 4 of 8: 2 PNGs")
 
 # --vertex-normals reaches the mapper: the same flight's pictures shaded per vertex look
-# like the per-fragment ones (same terrain, same colours) but are not the same pixels.
+# like the default's (whose automatic normals shade per fragment at tau 2: same terrain,
+# same colours) but are not the same pixels.
 d3 = os.path.join(out, "line-vertex-normals")
 rc, so, se = run(exe, "--path", "line", "--clearance", "150", "--seconds", "1", "--fps", "8",
                  "--every", "4", "--size", "200x120", "--synthetic-size", "129", "--tau", "2",
@@ -66,6 +68,18 @@ for name in sorted(os.path.basename(p) for p in glob.glob(os.path.join(d2, "fram
     check(a.shape == b.shape and 0 < (diff > 0).mean() and (diff > 24).mean() < 0.05,
           f"{name}: --vertex-normals changed {100 * (diff > 0).mean():.1f} % of the pixels, "
           f"{100 * (diff > 24).mean():.2f} % by more than 24 levels")
+
+# --normals fragment reaches the mapper too, and at tau 2 the default's automatic normals are
+# per fragment (they shade per vertex only in frames certified within 1 px): the same pixels.
+d5 = os.path.join(out, "line-fragment-normals")
+rc, so, se = run(exe, "--path", "line", "--clearance", "150", "--seconds", "1", "--fps", "8",
+                 "--every", "4", "--size", "200x120", "--synthetic-size", "129", "--tau", "2",
+                 "--normals", "fragment", "--out", d5)
+check(rc == 0, f"--normals fragment flight exited {rc}: {se.strip()}")
+for name in sorted(os.path.basename(p) for p in glob.glob(os.path.join(d2, "frame_*.png"))):
+    a, b = png_pixels(os.path.join(d2, name))[2], png_pixels(os.path.join(d5, name))[2]
+    check(a.shape == b.shape and (a == b).all(),
+          f"{name}: --normals fragment draws the default's pixels at tau 2")
 
 # --no-geomorphing reaches the mapper: without the level path each block takes the coarsest
 # level within tau, so the same flight draws fewer triangles (513^2: the 129^2 line flight

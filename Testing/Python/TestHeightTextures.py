@@ -24,6 +24,8 @@ vtkPolyDataNormals), rendered with the same camera at tau = 0.5:
 - lit with the slopes computed per fragment from the heights (SlopeTexture off, the
   default): the slope texture's picture within its rounding, with a nodata hole too, 4
   bytes a sample less.
+- automatic normals (the default): the picture of normals per vertex at tau 0.5 where OpenGL
+  runs on the CPU, of normals per fragment at tau 8 (and everywhere on a GPU);
 - lit with normals per vertex (VertexNormals): at tau = 0 (every triangle a level-0 half
   quad) the stock mapper's picture of the full-resolution mesh carrying the same
   central-difference point normals (computed in numpy), with a nodata hole too, heights
@@ -80,6 +82,9 @@ def ours(img, **kw):
     m.SetPixelError(0.5)
     m.ScalarVisibilityOff()
     m.SetShareHeights(kw.pop("ShareHeights", False))
+    # The checks below are of the per-fragment normals unless told otherwise (the default,
+    # automatic normals, would shade this tau 0.5 per vertex).
+    m.SetNormalModeToPerFragment()
     for k, v in kw.items():
         getattr(m, "Set" + k)(v)
     a = vtkActor()
@@ -257,6 +262,30 @@ for name, z, scale in (("no nodata", np.round(zf).astype(np.float32), 1.0), ("a 
               f"normals per vertex, {name}, heights {where}, tau 0: {100 * d:.3f} % of the terrain's "
               f"pixels differ by > 2 from the stock mapper's with the same point normals; "
               f"{vertex_bytes} GPU bytes (per fragment: {mp.GetGPUMemoryBytes()})")
+
+# Automatic normals (NormalMode's default): where OpenGL runs on the CPU, per vertex while the
+# frame is certified within 1 px (the documented threshold, written here, not read from the
+# mapper) and per fragment above; on a GPU per fragment. Each automatic frame must be the
+# very picture of the mode it stands for, and the two modes must differ.
+caps = win.ReportCapabilities() or ""
+software = "llvmpipe" in caps or "softpipe" in caps
+img = refscene.image_from_heights(np.round(zf).astype(np.float32))
+for tau in (0.5, 8.0):
+    pictures = {}
+    for mode in ("Automatic", "PerVertex", "PerFragment"):
+        m, a = ours(img, PixelError=tau)
+        getattr(m, "SetNormalModeTo" + mode)()
+        pictures[mode] = frame(a)
+        if mode == "Automatic":
+            certified, chose_vertex = m.GetMaximumScreenSpaceError(), m.GetLastFrameVertexNormals()
+    expect = "PerVertex" if software and certified <= 1.0 else "PerFragment"
+    other = "PerFragment" if expect == "PerVertex" else "PerVertex"
+    check(chose_vertex == (expect == "PerVertex") and np.array_equal(pictures["Automatic"], pictures[expect])
+          and differing(pictures[expect], pictures[other], 0) > 0.01,
+          f"automatic normals at tau {tau:g} (certified {certified:.3f} px, renderer on the CPU: "
+          f"{software}): the picture of {expect}, {100 * differing(pictures[expect], pictures[other], 0):.1f} "
+          f"% of pixels apart from {other}'s")
+check(not software or certified > 1.0, f"tau 8 is certified above 1 px ({certified:.3f}): both cases seen")
 
 # Colouring by a second point array through a lookup table, and by RGB colours.
 slope = np.hypot(*np.gradient(zf, 30.0)).astype(np.float32)

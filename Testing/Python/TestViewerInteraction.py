@@ -19,7 +19,7 @@ over the synthetic terrain, 513^2 at 640 x 360:
   pixel with the eye fixed, Page Down stops at the clearance above the ground; 'f' again:
   orbit about the terrain point in the middle of the view;
 - 'g' toggles geomorphing (the mapper's Geomorphing, on at start); 'n' toggles the shading
-  normals per vertex / per pixel (VertexNormals; the picture changes); 'h' shows every key,
+  normals automatic / per vertex / per pixel (NormalMode; per pixel changes the picture); 'h' shows every key,
   and Documentation/user-guide.md's key table lists every one;
 - looking away from the terrain (VTK then skips the mapper), the overlay says so and shows
   no stale figures;
@@ -228,16 +228,33 @@ check(not mapper.GetGeomorphing() and "geomorphing off" in v.message
       and mapper.GetPixelError() == tau_before, f"'g': off ({v.message!r})")
 play(key("g"))
 check(mapper.GetGeomorphing() and "geomorphing on" in v.message, f"'g' again: on ({v.message!r})")
-# --- Shading normals: 'n' toggles the mapper's VertexNormals (off at start) --------------
-check(not mapper.GetVertexNormals(), "normals per pixel at start")
-per_pixel = refscene.grab(v.window)[60:H - 80].astype(int)  # between the status line and statistics
+# --- Shading normals: 'n' cycles the mapper's NormalMode (automatic at start) -------------
+check(mapper.GetNormalMode() == mapper.NORMALS_AUTOMATIC, "normals automatic at start")
+# Automatic: per vertex where OpenGL runs on the CPU and the frame is certified within 1 px.
+caps = v.window.ReportCapabilities() or ""
+software = "llvmpipe" in caps or "softpipe" in caps
+auto_vertex = software and mapper.GetMaximumScreenSpaceError() <= mapper.GetAutomaticVertexNormalsPixels()
+check(mapper.GetLastFrameVertexNormals() == auto_vertex,
+      f"automatic normals: per vertex {mapper.GetLastFrameVertexNormals()} at a certified "
+      f"{mapper.GetMaximumScreenSpaceError():.3f} px (renderer on the CPU: {software})")
+automatic = refscene.grab(v.window)[60:H - 80].astype(int)  # between the status line and statistics
 play(key("n"))
 per_vertex = refscene.grab(v.window)[60:H - 80].astype(int)
-changed = float((np.abs(per_pixel - per_vertex).max(axis=2) > 0).mean())
-check(mapper.GetVertexNormals() and "per vertex" in v.message and changed > 0.01,
-      f"'n': normals per vertex ({v.message!r}; {100 * changed:.1f} % of the pixels changed)")
+check(mapper.GetNormalMode() == mapper.NORMALS_PER_VERTEX and mapper.GetLastFrameVertexNormals()
+      and "per vertex" in v.message, f"'n': normals per vertex ({v.message!r})")
 play(key("n"))
-check(not mapper.GetVertexNormals() and "per pixel" in v.message, f"'n' again: per pixel ({v.message!r})")
+per_pixel = refscene.grab(v.window)[60:H - 80].astype(int)
+changed = float((np.abs(per_pixel - per_vertex).max(axis=2) > 0).mean())
+check(mapper.GetNormalMode() == mapper.NORMALS_PER_FRAGMENT and not mapper.GetLastFrameVertexNormals()
+      and "per pixel" in v.message and changed > 0.01,
+      f"'n' again: per pixel ({v.message!r}; {100 * changed:.1f} % of the pixels changed)")
+# Automatic draws what its choice draws: the same pixels as that mode.
+same = per_vertex if auto_vertex else per_pixel
+check(float((np.abs(automatic - same).max(axis=2) > 0).mean()) == 0.0,
+      "automatic normals draw the same picture as the mode they chose")
+play(key("n"))
+check(mapper.GetNormalMode() == mapper.NORMALS_AUTOMATIC and "automatic" in v.message,
+      f"'n' a third time: automatic ({v.message!r})")
 play(key("h"))
 check(all(doc in v.overlay.status.GetInput() for _, _, doc in viewer_module.KEYS),
       "'h': the help lists every key")

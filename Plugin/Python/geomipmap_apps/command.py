@@ -119,9 +119,19 @@ def add_terrain_options(parser, dem_positional=False):
     return g
 
 
+# --normals: the mapper's NormalMode by name.
+NORMAL_MODES = ("auto", "vertex", "fragment")
+
+
+def set_normal_mode(mapper, name):
+    """vtkGeoMipMapMapper.SetNormalMode from a --normals name."""
+    {"auto": mapper.SetNormalModeToAutomatic, "vertex": mapper.SetNormalModeToPerVertex,
+     "fragment": mapper.SetNormalModeToPerFragment}[name]()
+
+
 def add_rendering_options(parser, size=(1280, 720)):
     """The rendering options: --tau, --block-size, --size, --color, --texture,
-    --texture-size, --no-lighting, --vertex-normals, --no-geomorphing (read by
+    --texture-size, --no-lighting, --normals (--vertex-normals), --no-geomorphing (read by
     scene.Scene.from_args); returns the group so that a tool can add its own."""
     g = parser.add_argument_group("rendering")
     g.add_argument("--tau", type=positive(float, 0, strict=False), default=1.0,
@@ -139,10 +149,14 @@ def add_rendering_options(parser, size=(1280, 720)):
                    metavar="PIXELS", help="resample a --texture larger than this a side "
                    "(default 8192; at most 16384, the OpenGL texture limit)")
     g.add_argument("--no-lighting", action="store_true", help="flat colours, no sun")
-    g.add_argument("--vertex-normals", action="store_true",
-                   help="shade with normals at the drawn vertices instead of at every pixel "
-                   "(less shading detail in coarse triangles; faster frames on a software "
-                   "renderer such as llvmpipe)")
+    g.add_argument("--normals", choices=NORMAL_MODES, default="auto",
+                   help="where lit terrain takes its normals: 'vertex' at the drawn vertices "
+                   "(faster frames on a software renderer such as llvmpipe, less shading "
+                   "detail in coarse triangles), 'fragment' at every pixel, 'auto' (default) "
+                   "per vertex while the frame's certified error is at most 1 px, per pixel "
+                   "above")
+    g.add_argument("--vertex-normals", dest="normals", action="store_const", const="vertex",
+                   help="the same as --normals vertex")
     g.add_argument("--no-geomorphing", action="store_true",
                    help="levels switch at once (pops of up to --tau pixels) instead of gliding; "
                    "each block takes the coarsest level within --tau, so wide views draw fewer "

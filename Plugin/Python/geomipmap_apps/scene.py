@@ -21,6 +21,7 @@ from vtkmodules.vtkRenderingCore import (
 )
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (OpenGL factory overrides)
 
+from . import command
 from .errors import AppError, VTKMessages
 
 # Hypsometric tints: fraction of the height range -> RGB (lowland green .. snow).
@@ -42,8 +43,8 @@ class Scene:
     block size (quads) and pixel error. color: "elevation" (hypsometric tints) or
     "texture:FILE.png" (stretched over the extent). drape: a georeferenced image
     (orthophoto) laid over that colouring by its coordinates (vtkGeoMipMapImageDrape),
-    resampled to at most drape_size pixels a side. vertex_normals: the mapper's
-    VertexNormals (normals per vertex instead of per fragment). geomorphing: the mapper's
+    resampled to at most drape_size pixels a side. normals: the mapper's NormalMode by
+    name ("auto", "vertex" or "fragment": command.NORMAL_MODES). geomorphing: the mapper's
     Geomorphing (smooth level changes, on by default). size: the window's (width, height).
     on_screen: a window on the display instead of off-screen rendering. title: the
     window's name. messages: VTKMessages for errors (texture reading). window: a render
@@ -54,7 +55,7 @@ class Scene:
 
     def __init__(self, image, heights, block_size=None, tau=1.0, color="elevation",
                  lighting=True, size=(1280, 720), on_screen=False, title="geomipmap",
-                 messages=None, window=None, drape=None, drape_size=8192, vertex_normals=False,
+                 messages=None, window=None, drape=None, drape_size=8192, normals="auto",
                  geomorphing=True):
         import geomipmap
 
@@ -64,7 +65,7 @@ class Scene:
         if block_size is not None:  # None: the mapper's default (GetDefaultBlockSize)
             self.mapper.SetBlockSize(block_size)
         self.mapper.SetPixelError(tau)
-        self.mapper.SetVertexNormals(vertex_normals)
+        command.set_normal_mode(self.mapper, normals)
         self.mapper.SetGeomorphing(geomorphing)
         self.actor = vtkActor()
         self.actor.SetMapper(self.mapper)
@@ -101,7 +102,7 @@ class Scene:
         """A Scene with the rendering options of command.add_rendering_options."""
         return cls(image, heights, block_size=args.block_size, tau=args.tau, color=args.color,
                    lighting=not args.no_lighting, size=args.size, drape=args.texture,
-                   drape_size=args.texture_size, vertex_normals=args.vertex_normals,
+                   drape_size=args.texture_size, normals=args.normals,
                    geomorphing=not args.no_geomorphing, **kw)
 
     def _colour(self, heights, spec):

@@ -2,16 +2,18 @@
 
 Methods (same window, camera path, colouring and lighting, one at a time):
   brute    the full-resolution mesh in a stock vtkPolyDataMapper (uploaded once)
-  ours     vtkGeoMipMapMapper at each tau
-  ours-vn  the same mapper and triangles with VertexNormals on (normals per vertex, as the
-           stock mapper shades the other methods' meshes, instead of per fragment)
+  ours     vtkGeoMipMapMapper at each tau, as configured by default (its automatic normals:
+           per vertex at a certified error of at most 1 px, per fragment above)
+  ours-fn  the same mapper and triangles with normals per fragment at every tau
+  ours-vn  the same with normals per vertex at every tau (as the stock mapper shades the
+           other methods' meshes)
   ours-vn-nomorph  ours-vn with Geomorphing off: levels switch at once (pops of up to tau)
            and each block takes the coarsest level within tau, not geomorphing's level
            path; what smooth level changes cost
-  floor    the fill floor: ours as configured by default at a pixel error so large (1e6)
-           that every block takes its coarsest level and far nodes merge whole; the same
-           pixels shaded with the fewest triangles ours draws, so no tau of ours is faster
-           and brute force / floor is the most ours can gain over brute force here
+  floor    the fill floor: ours-vn at a pixel error so large (1e6) that every block takes
+           its coarsest level and far nodes merge whole; the same pixels with the fewest
+           triangles and the cheapest shading ours has, so no configuration of ours is
+           faster and brute force / floor is the most ours can gain over brute force here
   greedy   vtkGreedyTerrainDecimation at ours' mean triangle count per tau (built once)
   uniform  every s-th sample, s chosen for the same triangle count
   quadric  vtkQuadricClustering (what vtkQuadricLODActor uses) at the same count
@@ -31,7 +33,7 @@ from . import report
 from .run import run_dem
 
 PROG = "geomipmap-bench"
-METHODS = ("brute", "ours", "ours-vn", "ours-vn-nomorph", "floor", "greedy", "uniform", "quadric")
+METHODS = ("brute", "ours", "ours-fn", "ours-vn", "ours-vn-nomorph", "floor", "greedy", "uniform", "quadric")
 
 
 def _list(kind, allow_empty=False):

@@ -84,7 +84,8 @@ class Bench:
 
     def add_floor(self, tau):
         """The fill floor: a second LOD mapper as the scene's is configured (block size,
-        geomorphing settings, colouring, the actor's property) at pixel error `tau`, with its
+        geomorphing settings, colouring, the actor's property) with its cheapest shading
+        (normals per vertex) at pixel error `tau`, with its
         own actor and its own filter for the measured error. Its own, so that it keeps its
         own levels and morph history: the scene's mapper, shared by ours' methods, would
         otherwise follow a frame at the coarsest. Returns (actor, mapper, mesh_for_frame)."""
@@ -97,6 +98,7 @@ class Bench:
         m.SetGeomorphRange(ours.GetGeomorphRange())
         m.SetGeomorphMeasureSamples(ours.GetGeomorphMeasureSamples())
         m.SetPixelError(tau)
+        m.SetNormalModeToPerVertex()
         m.SetLookupTable(ours.GetLookupTable())
         m.SetScalarRange(ours.GetScalarRange())
         m.SetColorModeToMapScalars()

@@ -18,9 +18,9 @@ from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 # keeps in host memory), for the memory budget; each run notes its measured peak RSS.
 # ours: the input plus height and slope textures, 12.2 measured at the margin (16385^2
 # peaks at 13.5 with the process's own ~400 MB); greedy: double points, its triangulation
-# and a priority queue over every sample. ours-vn, ours-vn-nomorph and floor are the same mapper
+# and a priority queue over every sample. ours-fn, ours-vn, ours-vn-nomorph and floor are the same mapper
 # with other options.
-BYTES_PER_SAMPLE = {"brute": 110, "ours": 16, "ours-vn": 16, "ours-vn-nomorph": 16, "floor": 16,
+BYTES_PER_SAMPLE = {"brute": 110, "ours": 16, "ours-fn": 16, "ours-vn": 16, "ours-vn-nomorph": 16, "floor": 16,
                     "greedy": 100, "uniform": 8, "quadric": 110}
 
 

@@ -128,8 +128,9 @@ def summarise(rows):
     return out
 
 
-# The mapper: shaded per fragment (default) or per vertex, and per vertex without geomorphing.
-OURS = ("ours", "ours-vn", "ours-vn-nomorph")
+# The mapper: as configured by default (automatic normals), shaded per fragment or per vertex
+# at every tau, and per vertex without geomorphing.
+OURS = ("ours", "ours-fn", "ours-vn", "ours-vn-nomorph")
 
 
 def pareto(groups, dem, method="ours"):
@@ -158,9 +159,10 @@ def markdown(groups, metas):
                   f"path {m['path']}.", ""]
     lines += ["Frame times are wall times of Render() + WaitForCompletion() (glFinish); "
               "'x brute' = brute force's median frame time / this median; 'x floor' = this "
-              "median / the fill floor's (ours at its coarsest, the same pixels shaded with "
-              "the fewest triangles; brute's 'x floor' is the most any of ours can gain over "
-              "brute force on this renderer). Errors are "
+              "median / the fill floor's (ours at its coarsest with normals per vertex: the "
+              "same pixels with the fewest triangles and the cheapest shading; brute's 'x "
+              "floor' is the most any of ours can gain over brute force on this renderer). "
+              "Errors are "
               "measured (vtkGeoMipMapScreenError): max and p99 are the worst frame's, mean "
               "is over frames. 'uncovered': in-view samples without a triangle above or "
               "below (mean per frame). 'depth diff': pixels whose depth differs from the "
@@ -219,7 +221,8 @@ def plot(groups, filename):
     rows = (len(dems) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.2 * rows), squeeze=False)
     # Fixed colours: the same method looks the same in every panel.
-    style = {"ours": ("o-", "C0"), "ours-vn": ("D-", "C4"), "ours-vn-nomorph": ("P-", "C5"),
+    style = {"ours": ("o-", "C0"), "ours-fn": ("X-", "C6"), "ours-vn": ("D-", "C4"),
+             "ours-vn-nomorph": ("P-", "C5"),
              "greedy": ("s--", "C1"),
              "uniform": ("^--", "C2"), "quadric": ("v--", "C3")}
     floor = 0.05  # log axes: a measured 0 px is drawn at this floor

@@ -13,6 +13,7 @@ import time
 
 import numpy as np
 
+from .. import command
 from ..errors import AppError, VTKMessages
 from ..scene import Scene
 from ..terrain import load_terrain
@@ -28,10 +29,12 @@ KNOWN_FILES = {
 }
 
 
-# The mapper's configurations measured: (VertexNormals, Geomorphing) per method.
-OURS_SETTINGS = {"ours": (False, True), "ours-vn": (True, True), "ours-vn-nomorph": (True, False)}
-# The fill floor: ours' default configuration at this pixel error, so large that every block
-# takes its coarsest level and far nodes merge as far as the tree allows.
+# The mapper's configurations measured: (NormalMode by --normals name, Geomorphing) per method.
+OURS_SETTINGS = {"ours": ("auto", True), "ours-fn": ("fragment", True), "ours-vn": ("vertex", True),
+                 "ours-vn-nomorph": ("vertex", False)}
+# The fill floor: ours with geomorphing and its cheapest shading (normals per vertex) at this
+# pixel error, so large that every block takes its coarsest level and far nodes merge as far
+# as the tree allows.
 FLOOR_TAU = 1e6
 
 
@@ -142,21 +145,22 @@ def _build(label, args, methods, over, budget_gb, bench, heights, image, skip, o
 
     ours_extra = lod_columns(m)
 
-    def ours_before(tau, vertex_normals, geomorphing):
+    def ours_before(tau, normals, geomorphing):
         def before():
             m.SetPixelError(tau)
-            m.SetVertexNormals(vertex_normals)
+            command.set_normal_mode(m, normals)
             m.SetGeomorphing(geomorphing)
         return before
 
-    # ours-vn: the same mapper, selection and triangles, shaded per vertex; ours-vn-nomorph:
+    # ours-fn / ours-vn: the same mapper, selection and triangles, shaded per fragment / per
+    # vertex whatever the error (ours' automatic normals pick one by it); ours-vn-nomorph:
     # also without geomorphing (its own selection: no level path, the levels tau allows).
     for method in (x for x in OURS_SETTINGS if x in methods):
-        vertex_normals, geomorphing = OURS_SETTINGS[method]
+        normals, geomorphing = OURS_SETTINGS[method]
         for tau in args.tau:
             configs.append(Config(method, tau, bench.scene.actor,
                                   lambda f, tau=tau, g=geomorphing: bench.ours_mesh(tau, g),
-                                  before=ours_before(tau, vertex_normals, geomorphing),
+                                  before=ours_before(tau, normals, geomorphing),
                                   extra=ours_extra))
     if "floor" in methods:
         if over["floor"]:

@@ -38,7 +38,7 @@ KEYS = (
     (("l", "L"), "freeze", "l  freeze the LOD on / off (inspect it from elsewhere)"),
     (("f", "F"), "mode_switch", "f  fly mode / orbit mode"),
     (("g", "G"), "geomorph", "g  geomorphing on / off (smooth level changes)"),
-    (("n", "N"), "normals", "n  shading normals per vertex / per pixel"),
+    (("n", "N"), "normals", "n  shading normals automatic / per vertex / per pixel"),
     (("s", "S"), "screenshot", "s  save a screenshot (PNG, the window's size)"),
     (("r", "R"), "reset", "r  reset the camera"),
     (("o", "O"), "overlay_toggle", "o  overlay on / off"),
@@ -385,10 +385,20 @@ class Viewer:
                      else "geomorphing off: levels switch at once", render=True)
 
     def normals(self):
-        self.mapper.SetVertexNormals(not self.mapper.GetVertexNormals())
-        self._status("normals per vertex: faster frames, less shading detail in coarse "
-                     "triangles" if self.mapper.GetVertexNormals()
-                     else "normals per pixel: full-resolution shading", render=True)
+        """Cycles the mapper's NormalMode: automatic -> per vertex -> per pixel."""
+        m = self.mapper
+        mode = m.GetNormalMode()
+        if mode == m.NORMALS_AUTOMATIC:
+            m.SetNormalModeToPerVertex()
+            text = "normals per vertex: faster frames, less shading detail in coarse triangles"
+        elif mode == m.NORMALS_PER_VERTEX:
+            m.SetNormalModeToPerFragment()
+            text = "normals per pixel: full-resolution shading"
+        else:
+            m.SetNormalModeToAutomatic()
+            text = ("normals automatic: per vertex while the certified error is at most "
+                    f"{m.GetAutomaticVertexNormalsPixels():g} px, per pixel above")
+        self._status(text, render=True)
 
     def screenshot(self):
         """Writes the current frame, overlay included, at the window's size; returns the
