@@ -42,13 +42,34 @@ class Bench:
         # geomorphing setting: each keeps its own morph history, as the mapper does.
         self.filters = {}
         for geomorphing in (True, False):
-            f = geomipmap.vtkGeoMipMapFilter()
-            f.SetInputData(image)
-            f.SetCamera(scene.renderer.GetActiveCamera())
-            f.SetViewportSize(*size)
-            f.SetBlockSize(scene.mapper.GetBlockSize())
-            f.SetGeomorphing(geomorphing)
-            self.filters[geomorphing] = f
+            self.filters[geomorphing] = self._filter()
+            self.filters[geomorphing].SetGeomorphing(geomorphing)
+
+    def _filter(self):
+        """A vtkGeoMipMapFilter of the terrain for the scene's camera and viewport, at the
+        scene mapper's block size."""
+        import geomipmap
+
+        f = geomipmap.vtkGeoMipMapFilter()
+        f.SetInputData(self.image)
+        f.SetCamera(self.scene.renderer.GetActiveCamera())
+        f.SetViewportSize(*self.size)
+        f.SetBlockSize(self.scene.mapper.GetBlockSize())
+        return f
+
+    def _add_actor(self, mapper):
+        """An actor in the scene for `mapper`, coloured through ours' lookup table and
+        scalar range and lit with ours' actor's property."""
+        ours = self.scene.mapper
+        mapper.SetLookupTable(ours.GetLookupTable())
+        mapper.SetScalarRange(ours.GetScalarRange())
+        mapper.SetColorModeToMapScalars()
+        mapper.ScalarVisibilityOn()
+        a = vtkActor()
+        a.SetMapper(mapper)
+        a.SetProperty(self.scene.actor.GetProperty())
+        self.scene.renderer.AddActor(a)
+        return a
 
     def camera(self, frame):
         """Frame's camera; one clipping range for every method (from the terrain's bounds),
@@ -69,26 +90,17 @@ class Bench:
         """A stock vtkPolyDataMapper actor for a mesh, coloured and lit like ours."""
         m = vtkPolyDataMapper()
         m.SetInputData(mesh)
-        ours = self.scene.mapper
-        m.SetLookupTable(ours.GetLookupTable())
-        m.SetScalarRange(ours.GetScalarRange())
-        m.SetColorModeToMapScalars()
-        m.ScalarVisibilityOn()
         # Map each fragment's interpolated height, as the GeoMipMap mapper does.
         m.InterpolateScalarsBeforeMappingOn()
-        a = vtkActor()
-        a.SetMapper(m)
-        a.SetProperty(self.scene.actor.GetProperty())
-        self.scene.renderer.AddActor(a)
-        return a
+        return self._add_actor(m)
 
     def add_floor(self, tau):
         """The fill floor: a second LOD mapper as the scene's is configured (block size,
         geomorphing settings, colouring, the actor's property) with its cheapest shading
-        (normals per vertex) at pixel error `tau`, with its
-        own actor and its own filter for the measured error. Its own, so that it keeps its
-        own levels and morph history: the scene's mapper, shared by ours' methods, would
-        otherwise follow a frame at the coarsest. Returns (actor, mapper, mesh_for_frame)."""
+        (normals per vertex) at pixel error `tau`, with its own actor and its own filter for
+        the measured error. Its own, so that it keeps its own levels and morph history: the
+        scene's mapper, shared by ours' methods, would otherwise follow a frame at the
+        coarsest. Returns (actor, mapper, mesh_for_frame)."""
         import geomipmap
 
         ours = self.scene.mapper
@@ -99,19 +111,8 @@ class Bench:
         m.SetGeomorphMeasureSamples(ours.GetGeomorphMeasureSamples())
         m.SetPixelError(tau)
         m.SetNormalModeToPerVertex()
-        m.SetLookupTable(ours.GetLookupTable())
-        m.SetScalarRange(ours.GetScalarRange())
-        m.SetColorModeToMapScalars()
-        m.ScalarVisibilityOn()
-        a = vtkActor()
-        a.SetMapper(m)
-        a.SetProperty(self.scene.actor.GetProperty())
-        self.scene.renderer.AddActor(a)
-        f = geomipmap.vtkGeoMipMapFilter()
-        f.SetInputData(self.image)
-        f.SetCamera(self.scene.renderer.GetActiveCamera())
-        f.SetViewportSize(*self.size)
-        f.SetBlockSize(ours.GetBlockSize())
+        a = self._add_actor(m)
+        f = self._filter()
         f.SetGeomorphRange(ours.GetGeomorphRange())
         f.SetGeomorphMeasureSamples(ours.GetGeomorphMeasureSamples())
         f.SetPixelError(tau)
