@@ -182,7 +182,8 @@ def markdown(groups, metas):
             lines.append(
                 f"| {g['method']} | {g['tau']} | {g['triangles']:.0f} | {_f(g['build_s'], 1)} | "
                 f"{t[0]:.1f} / {t[1]:.1f} / {t[2]:.1f} | {g['lod_ms'][0]:.2f} | "
-                f"{g['upload_ms'][0]:.2f} | {g['render_ms'][0]:.1f} | {_f(g['speedup'], 1)} | {_f(g['over_floor'], 2)} | "
+                f"{g['upload_ms'][0]:.2f} | {g['render_ms'][0]:.1f} | {_f(g['speedup'], 1)} | "
+                f"{_f(g['over_floor'], 2)} | "
                 f"{g['err_max']:.3f} | {g['err_p99']:.3f} | {g['err_mean']:.4f} | "
                 f"{g['uncovered']:.0f} | {_f(100 * g['depth'], 2)} | "
                 f"{_f(100 * g['shade'], 2)} / {_f(100 * g['shade_max'], 2)} |")
