@@ -124,6 +124,13 @@ def window(width, height, renderer=None):
     return win
 
 
+def renders_on_cpu(win):
+    """Whether the window's OpenGL runs on the CPU (Mesa's llvmpipe or softpipe), as the
+    mapper's automatic normals ask."""
+    caps = win.ReportCapabilities() or ""
+    return "llvmpipe" in caps or "softpipe" in caps
+
+
 def grab(win):
     """The window's RGB pixels as a (height, width, 3) uint8 array, row 0 at the bottom."""
     w2i = vtkWindowToImageFilter()
