@@ -257,7 +257,8 @@ public:
    * - NORMALS_AUTOMATIC (default): per fragment on a GPU, where ten height fetches a
    *   fragment are cheap. Where OpenGL runs on the CPU (Mesa's llvmpipe or softpipe), where
    *   the per-fragment normal is most of a fill-bound frame, per vertex while the frame's
-   *   certified error (GetMaximumScreenSpaceError) is at most
+   *   certified bound (that of its morphed surface, as GetMaximumScreenSpaceError reports
+   *   it when the morph is drawn) is at most
    *   GetAutomaticVertexNormalsPixels() (1 px), per fragment above: within a pixel the two
    *   differ little from the full-resolution render, above it per vertex loses detail
    *   (decision record 004 has the figures).

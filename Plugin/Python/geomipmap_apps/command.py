@@ -153,8 +153,8 @@ def add_rendering_options(parser, size=(1280, 720)):
                    help="where lit terrain takes its normals: 'vertex' at the drawn vertices "
                    "(faster frames on a software renderer such as llvmpipe, less shading "
                    "detail in coarse triangles), 'fragment' at every pixel, 'auto' (default) "
-                   "per vertex while the frame's certified error is at most 1 px, per pixel "
-                   "above")
+                   "at every pixel on a GPU and, on a software renderer, per vertex while the "
+                   "frame's certified error is at most 1 px, per pixel above")
     g.add_argument("--vertex-normals", dest="normals", action="store_const", const="vertex",
                    help="the same as --normals vertex")
     g.add_argument("--no-geomorphing", action="store_true",
