@@ -483,6 +483,17 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     scratch.measured.begin(vertices);
     for (const GridTriangle& t : tris)
     {
+      // A half quad whose vertices an earlier triangle measured adds nothing: they were
+      // measured only where finite (exactAtVertices), and it covers no other sample. At the
+      // finest levels nearly every triangle is one, and each vertex is shared by about six.
+      const long long signedArea = doubledArea(t);
+      if ((signedArea == 1 || signedArea == -1) &&
+        scratch.measured.marked(static_cast<std::size_t>(t.v[0].i - i0) + static_cast<std::size_t>(t.v[0].j - j0) * rowLength) &&
+        scratch.measured.marked(static_cast<std::size_t>(t.v[1].i - i0) + static_cast<std::size_t>(t.v[1].j - j0) * rowLength) &&
+        scratch.measured.marked(static_cast<std::size_t>(t.v[2].i - i0) + static_cast<std::size_t>(t.v[2].j - j0) * rowLength))
+      {
+        continue;
+      }
       double h[3], d[3];
       const double* coupling[3];
       bool onEdge[3];
@@ -507,7 +518,6 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       // of two unless a side of the block is not one) its weights are exactly 1 and 0 there,
       // so each such triangle would add the same values. Where the area is not, 1 / area
       // rounds, and the triangle measures its vertices itself.
-      const long long signedArea = doubledArea(t);
       const long long area = std::llabs(signedArea);
       const bool exactAtVertices = area > 0 && (area & (area - 1)) == 0 && finiteVertices;
       if (exactAtVertices)

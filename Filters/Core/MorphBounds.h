@@ -101,6 +101,7 @@ struct VertexMarks
     stamp[v] = generation;
     return first;
   }
+  bool marked(std::size_t v) const { return stamp[v] == generation; }
 };
 
 // Buffers of morphPartErrors, reused from call to call: the part's triangles and each
