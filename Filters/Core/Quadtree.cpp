@@ -99,8 +99,7 @@ void buildNode(Quadtree& qt, int nodeIndex, int c0, int c1, int r0, int r1)
     qt.nodes[nodeIndex].allNodata = qt.blockAllNodata[b] != 0;
     return;
   }
-  // Split the block range the same way the samples were split: children mirror the
-  // recursive halving, so each child covers a contiguous range of bands.
+  // Each child covers a contiguous range of bands (splitBand).
   const int cm = splitBand(c0, c1);
   const int rm = splitBand(r0, r1);
   int ranges[4][4];

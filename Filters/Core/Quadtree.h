@@ -2,7 +2,7 @@
 //
 // Width and height are each cut into bands of a power of two quads, as large as halving
 // would make them within `maxBlockQuads` (splitBands, bandWidth), and the quadtree's nodes
-// halve the bands. Because a dimension is split by a rule that depends on that dimension
+// split the bands at powers of two (splitBand). Because a dimension is split by a rule that depends on that dimension
 // alone, the leaves form a grid of row bands x column bands: every block has
 // exactly one neighbour per side with the same shared edge, which keeps stitching exact.
 // Leaves share their border samples (block (c, r) covers samples colStart[c]..colStart[c+1]).
@@ -261,11 +261,24 @@ struct NodataCollar
 };
 NodataCollar nodataCollar(const Heightfield& hf, int maxBlockQuads);
 
-// Where buildQuadtree splits a node's range [begin, end) of block columns (or rows): the
-// first band of its upper half (end when the range is one band, which is not split).
+// Where buildQuadtree splits a node's range [begin, end) of block columns (or rows): after
+// the largest power of two of bands below its count (end when the range is one band, which
+// is not split). A power-of-two count halves; an SRTM3 tile's 75 bands of 16 split 64 + 11,
+// so that most of a tile lies in nodes of 2^k x 2^k blocks (fans of 2 x 2 one-quad blocks
+// nest in them, mergeNestsInBlocks). Ranges start on multiples of their lower part's width.
 inline int splitBand(int begin, int end)
 {
-  return end - begin > 1 ? begin + (end - begin) / 2 : end;
+  const int n = end - begin;
+  if (n <= 1)
+  {
+    return end;
+  }
+  int p = 1;
+  while (2 * p < n)
+  {
+    p *= 2;
+  }
+  return begin + p;
 }
 
 // For each of `bands` bands (block columns or rows): 1 when it is the upper half of the

@@ -45,8 +45,9 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // errors at every level above 0, and bands start on even samples (splitBands); 14: bands
 // of the block width from the DEM's first sample (splitBands) instead of halves; 15: a
 // strip toward a coarser block's edge draws the block's own cells, its edge samples glided
-// onto the edge's polyline (Tessellate.h, BlockConfig::sampleLevel).
-constexpr uint32_t kFormatVersion = 15;
+// onto the edge's polyline (Tessellate.h, BlockConfig::sampleLevel); 16: quadtree nodes
+// split their band ranges at a power of two (splitBand), which changes the merged nodes.
+constexpr uint32_t kFormatVersion = 16;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 

@@ -250,8 +250,11 @@ TEST(Levels, EdgeSamples)
 
 TEST(Quadtree, UpperHalfBandsByHand)
 {
-  // [0, 5) halves at 2; [0, 2) at 1; [2, 5) at 3, then [3, 5) at 4.
-  EXPECT_EQ(gmm::upperHalfBands(5), (std::vector<uint8_t>{ 0, 1, 0, 0, 1 }));
+  // [0, 5) splits at 4 (the largest power of two below 5); [0, 4) at 2; [0, 2) at 1 and
+  // [2, 4) at 3.
+  EXPECT_EQ(gmm::upperHalfBands(5), (std::vector<uint8_t>{ 0, 1, 0, 1, 1 }));
+  // [0, 7) at 4, [4, 7) at 6, [4, 6) at 5.
+  EXPECT_EQ(gmm::upperHalfBands(7), (std::vector<uint8_t>{ 0, 1, 0, 1, 0, 1, 1 }));
   EXPECT_EQ(gmm::upperHalfBands(4), (std::vector<uint8_t>{ 0, 1, 0, 1 }));
   EXPECT_EQ(gmm::upperHalfBands(1), (std::vector<uint8_t>{ 0 }));
   EXPECT_TRUE(gmm::upperHalfBands(0).empty());
