@@ -453,6 +453,10 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
     *coupling = (c[0] != 0.0 || c[1] != 0.0 || c[2] != 0.0 || c[3] != 0.0) ? c : nullptr;
     return scratch.displacement[v];
   };
+  // Block vertex (i, j)'s index: a block's triangles have their vertices in it.
+  auto vertexIndex = [&](GridPoint p) {
+    return static_cast<std::size_t>(p.i - i0) + static_cast<std::size_t>(p.j - j0) * rowLength;
+  };
   // Vertices on the border are drawn at their base heights (on a glided edge, its polyline).
   auto onEdgeLine = [&](int i, int j) { return i == i0 || i == i1 || j == j0 || j == j1; };
   // A block without nodata has finite heights only (the heightfield turns infinities into
@@ -487,10 +491,8 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       // measured only where finite (exactAtVertices), and it covers no other sample. At the
       // finest levels nearly every triangle is one, and each vertex is shared by about six.
       const long long signedArea = doubledArea(t);
-      if ((signedArea == 1 || signedArea == -1) &&
-        scratch.measured.marked(static_cast<std::size_t>(t.v[0].i - i0) + static_cast<std::size_t>(t.v[0].j - j0) * rowLength) &&
-        scratch.measured.marked(static_cast<std::size_t>(t.v[1].i - i0) + static_cast<std::size_t>(t.v[1].j - j0) * rowLength) &&
-        scratch.measured.marked(static_cast<std::size_t>(t.v[2].i - i0) + static_cast<std::size_t>(t.v[2].j - j0) * rowLength))
+      if ((signedArea == 1 || signedArea == -1) && scratch.measured.marked(vertexIndex(t.v[0])) &&
+        scratch.measured.marked(vertexIndex(t.v[1])) && scratch.measured.marked(vertexIndex(t.v[2])))
       {
         continue;
       }
@@ -502,8 +504,7 @@ void updateMorphPartErrors(const Heightfield& hf, const Quadtree& qt, int block,
       for (int k = 0; k < 3; ++k)
       {
         const int i = t.v[k].i, j = t.v[k].j;
-        // A block's triangles have their vertices in it.
-        v[k] = static_cast<std::size_t>(i - i0) + static_cast<std::size_t>(j - j0) * rowLength;
+        v[k] = vertexIndex(t.v[k]);
         h[k] = onEdgeLine(i, j) ? sideBaseHeight(hf, i0, i1, j0, j1, config.edgeLevel, i, j) : hf.height(i, j);
         d[k] = displacement(v[k], i, j, h[k], &coupling[k]);
         onEdge[k] = i == i0 || i == i1 || j == j0 || j == j1;
