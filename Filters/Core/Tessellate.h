@@ -189,7 +189,7 @@ bool mergeableNode(const Quadtree& qt, int node);
 bool mergeNestsInBlocks(const Quadtree& qt, int node);
 
 // The apex of a mergeable node's fan: the block corner where the quadtree splits it into
-// its children (the sample nearest its centre when its blocks are alike).
+// its children (splitBand: its middle when it spans a power of two of like blocks).
 GridPoint mergedCentre(const Quadtree& qt, int node);
 
 // The perimeter of a node, counter-clockwise in (i, j) from its south-west corner: every
