@@ -439,7 +439,7 @@ bool vtkGeoMipMapMapper::UpdateTerrain(vtkImageData* image)
     // Heights on the GPU, and the slope texture (for lighting) where asked for. (Heights
     // read in place take none, but whether they can is known only in a render.)
     double need = samples * vtkGeoMipMapSampleTexture::BytesPerTexel(format);
-    if (this->SlopeTexture && this->NormalMode != NORMALS_PER_VERTEX)
+    if (this->SlopeTextureWanted())
     {
       need += samples * vtkGeoMipMapSampleTexture::BytesPerTexel(vtkGeoMipMapSampleTexture::Slopes16F);
     }
@@ -722,7 +722,7 @@ bool vtkGeoMipMapMapper::UpdateTextures(vtkOpenGLRenderWindow* win, vtkImageData
   gpu.Lit = act->GetProperty()->GetLighting() && act->GetProperty()->GetInterpolation() != VTK_FLAT;
   gpu.MaximumTileSize = this->MaximumTileSize;
   gpu.ShareHeights = this->ShareHeights;
-  gpu.SlopeTexture = this->SlopeTexture && this->NormalMode != NORMALS_PER_VERTEX;
+  gpu.SlopeTexture = this->SlopeTextureWanted();
   gpu.VertexNormals = this->LastFrameVertexNormals;
   // Colouring: the array VTK's own mappers would colour by, on the GPU as well.
   int cellFlag = 0;

@@ -639,6 +639,9 @@ protected:
   bool ShareHeights = true;
   bool SlopeTexture = false;
   int NormalMode = NORMALS_AUTOMATIC;
+  // Whether the slope texture is made: SlopeTexture unless NormalMode overrides it
+  // (NORMALS_PER_VERTEX makes none, automatic normals keep it for frames shaded per pixel).
+  bool SlopeTextureWanted() const { return this->SlopeTexture && this->NormalMode != NORMALS_PER_VERTEX; }
   bool LastFrameVertexNormals = false;
   double LastUpdateTime = 0.0;
   int NumberOfHeightUploads = 0;

@@ -2,9 +2,10 @@
 //
 // Width and height are each cut into bands of a power of two quads, as large as halving
 // would make them within `maxBlockQuads` (splitBands, bandWidth), and the quadtree's nodes
-// split the bands at powers of two (splitBand). Because a dimension is split by a rule that depends on that dimension
-// alone, the leaves form a grid of row bands x column bands: every block has
-// exactly one neighbour per side with the same shared edge, which keeps stitching exact.
+// split the bands at powers of two (splitBand). Because a dimension is split by a rule that
+// depends on that dimension alone, the leaves form a grid of row bands x column bands: every
+// block has exactly one neighbour per side with the same shared edge, which keeps stitching
+// exact.
 // Leaves share their border samples (block (c, r) covers samples colStart[c]..colStart[c+1]).
 #pragma once
 
@@ -269,16 +270,7 @@ NodataCollar nodataCollar(const Heightfield& hf, int maxBlockQuads);
 inline int splitBand(int begin, int end)
 {
   const int n = end - begin;
-  if (n <= 1)
-  {
-    return end;
-  }
-  int p = 1;
-  while (2 * p < n)
-  {
-    p *= 2;
-  }
-  return begin + p;
+  return n > 1 ? begin + (1 << (ceilLog2(n) - 1)) : end;
 }
 
 // For each of `bands` bands (block columns or rows): 1 when it is the upper half of the

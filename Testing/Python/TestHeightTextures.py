@@ -41,6 +41,7 @@ from vtkmodules.vtkCommonCore import vtkCommand, vtkLookupTable
 from vtkmodules.vtkRenderingCore import vtkActor, vtkCamera, vtkPolyDataMapper, vtkRenderer
 
 import geomipmap
+import gmmtestutil
 import refscene
 from geomipmap_apps.bench.meshes import _grid_normals
 
@@ -279,20 +280,7 @@ for tau in (0.5, 8.0):
         getattr(m, "SetNormalModeTo" + mode)()
         pictures[mode] = frame(a)
         chose_vertex = m.GetLastFrameVertexNormals() if mode == "Automatic" else chose_vertex
-    cam = ren.GetActiveCamera()
-    drawn = geomipmap.vtkGeoMipMapFilter()
-    drawn.SetInputData(img)
-    drawn.SetCamera(cam)
-    drawn.SetViewportSize(W, H)
-    drawn.SetPixelError(tau)
-    drawn.Update()
-    measure = geomipmap.vtkGeoMipMapScreenError()
-    measure.SetHeightfield(img)
-    measure.SetMesh(drawn.GetOutput())
-    measure.SetViewportSize(W, H)
-    measure.SetProjectionMatrix(cam.GetCompositeProjectionTransformMatrix(W / H, -1, 1))
-    check(measure.Compute(), f"tau {tau:g}: the drawn triangles measured")
-    measured = measure.GetMaximumError()
+    measured = gmmtestutil.measure_drawn(img, ren, a, tau, m.GetBlockSize()).error_px
     if tau > 1.0:
         check(measured > 1.0, f"tau {tau:g}: measured {measured:.3f} px, above 1 px: the certificate is too")
     expect = "PerVertex" if software and tau <= 1.0 else "PerFragment"
