@@ -363,8 +363,10 @@ public:
    * Geomorph merges too (on by default): while geomorphing, far terrain is drawn as a
    * merged quadtree node only where the node's blocks have reached their coarsest level on
    * the geomorphing path. A node over 2 x 2 blocks then draws exactly what its blocks
-   * drew, so merging and splitting it moves nothing; a node of more blocks, whose fan is not
-   * its children's surface, is drawn whole only where its error also projects within 0.3 px.
+   * drew, so merging and splitting it moves nothing; in a node of more blocks, whose fan is
+   * not its children's surface, the block corners inside it first glide onto its fan, and
+   * it merges where what that leaves to change projects within 0.3 px (nodes over nodata,
+   * or high in the tree where only a bound of their error is kept: where their error does).
    * With it off, a merge replaces blocks that the path still holds several levels finer,
    * and the surface jumps by up to about PixelError. Measured at PixelError 2 and the
    * default block size and range (measure_popping.py's slow flights, 40 frames; decision

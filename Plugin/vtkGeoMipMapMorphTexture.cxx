@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 vtkGeoMipMapMorphTexture::vtkGeoMipMapMorphTexture() = default;
 vtkGeoMipMapMorphTexture::~vtkGeoMipMapMorphTexture() = default;
@@ -20,7 +21,7 @@ namespace
 void textureSize(const gmm::Quadtree& qt, int& width, int& height)
 {
   width = std::max(qt.blockCols, qt.blockRows) + 1;
-  height = 3 * qt.blockRows + 1;
+  height = 4 * qt.blockRows + 2;
 }
 
 // The widest row of gmmSampleBands: a power of two, so that the shader finds a sample's
@@ -98,6 +99,22 @@ void writeBlock(std::vector<float>& data, int width, const gmm::Quadtree& qt,
     }
   }
 }
+// Writes the texel of block corner k (MorphFrame::corners' index) from a frame into `data`;
+// changed(x, y) is told when its value changed.
+template <typename Changed>
+void writeCorner(std::vector<float>& data, int width, const gmm::Quadtree& qt, const gmm::MorphFrame& f, int k,
+  Changed changed)
+{
+  const int x = k % (qt.blockCols + 1), y = 3 * qt.blockRows + 1 + k / (qt.blockCols + 1);
+  const bool moving = static_cast<size_t>(k) < f.cornerT.size() && f.cornerT[k] > 0.0f;
+  const float v[kTexelFloats] = { moving ? f.cornerTarget[k] : 0.0f, moving ? f.cornerT[k] : 0.0f, 0.0f };
+  float* p = &data[(static_cast<size_t>(y) * width + x) * kTexelFloats];
+  if (p[0] != v[0] || p[1] != v[1] || p[2] != v[2])
+  {
+    std::copy(v, v + kTexelFloats, p);
+    changed(x, y);
+  }
+}
 } // namespace
 
 std::string vtkGeoMipMapMorphTexture::Update(
@@ -115,25 +132,31 @@ std::string vtkGeoMipMapMorphTexture::Update(
     return this->Build(win, qt, frame);
   }
   // Rewrite the texels of the blocks drawn at the last upload (the frame has reset theirs)
-  // and of those drawn now; upload, row by row, the span of each row that changed (the
-  // drawn blocks of a wide view are a wedge near the eye: most rows change in a short span).
+  // and of those drawn now, and of the corners moving then or now; upload, row by row, the
+  // span of each row that changed (the drawn blocks of a wide view are a wedge near the eye:
+  // most rows change in a short span).
   this->SpanLo.assign(static_cast<size_t>(height), width);
   this->SpanHi.assign(static_cast<size_t>(height), -1);
-  auto rewrite = [&](int b) {
-    writeBlock(this->Data, width, qt, frame, b, [this](int x, int y) {
-      this->SpanLo[y] = std::min(this->SpanLo[y], x);
-      this->SpanHi[y] = std::max(this->SpanHi[y], x);
-    });
+  auto changed = [this](int x, int y) {
+    this->SpanLo[y] = std::min(this->SpanLo[y], x);
+    this->SpanHi[y] = std::max(this->SpanHi[y], x);
   };
-  for (int b : this->Written)
+  for (const std::vector<int>* blocks : { &std::as_const(this->Written), &frame.blocks })
   {
-    rewrite(b);
-  }
-  for (int b : frame.blocks)
-  {
-    rewrite(b);
+    for (int b : *blocks)
+    {
+      writeBlock(this->Data, width, qt, frame, b, changed);
+    }
   }
   this->Written = frame.blocks;
+  for (const std::vector<int>* corners : { &std::as_const(this->WrittenCorners), &frame.corners })
+  {
+    for (int k : *corners)
+    {
+      writeCorner(this->Data, width, qt, frame, k, changed);
+    }
+  }
+  this->WrittenCorners = frame.corners;
   this->LastUploadBytes = 0;
   bool active = false;
   for (int y = 0; y < height; ++y)
@@ -168,6 +191,7 @@ std::string vtkGeoMipMapMorphTexture::Build(
   this->Blocks[0] = this->Blocks[1] = 0;
   this->Size[0] = this->Size[1] = 0;
   this->Written.clear();
+  this->WrittenCorners.clear();
   this->LastUploadBytes = 0;
 
   const int bc = qt.blockCols, br = qt.blockRows;
@@ -192,6 +216,10 @@ std::string vtkGeoMipMapMorphTexture::Build(
   {
     writeBlock(this->Data, width, qt, frame, b, [](int, int) {});
   }
+  for (int k : frame.corners)
+  {
+    writeCorner(this->Data, width, qt, frame, k, [](int, int) {});
+  }
   this->Blocks[0] = bc;
   this->Blocks[1] = br;
   this->Texture->SetContext(win);
@@ -207,6 +235,7 @@ std::string vtkGeoMipMapMorphTexture::Build(
   this->Size[0] = width;
   this->Size[1] = height;
   this->Written = frame.blocks;
+  this->WrittenCorners = frame.corners;
   this->LastUploadBytes = this->GetBytes();
   return std::string();
 }

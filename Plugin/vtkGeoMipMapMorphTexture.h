@@ -10,6 +10,8 @@
  *     rows [0, br):          blocks (c, r)
  *     rows [br, 2 br):       vertical edges (line 0..bc, r)
  *     rows [2 br, 3 br + 1): horizontal edges (c, line 0..br)
+ *     rows [3 br + 1, 4 br + 2): block corners (line 0..bc, line 0..br), texel = (the merging
+ *                            node's fan height there, factor, unused) (gmm::MorphFrame::cornerT)
  *   with bc x br blocks. It is the only data uploaded per frame for placing vertices (a few
  *   bytes per block); nothing per vertex. Uploaded with geomorphing off too (factors 0):
  *   glided edges need their levels.
@@ -22,10 +24,10 @@
  * Lives in one OpenGL context.
  *
  * Per frame only the texels of the blocks drawn now or at the last upload (gmm::MorphFrame
- * ::blocks) and their edges are rewritten, and only each row's span of changed texels is
- * uploaded (glTexSubImage2D): a frozen frame uploads nothing, and the CPU work follows the
- * drawn blocks, not the DEM (65 536 blocks at 16385², block 64). A new layout or context
- * builds the texture whole.
+ * ::blocks) and their edges, and of the corners moving now or then, are rewritten, and only
+ * each row's span of changed texels is uploaded (glTexSubImage2D): a frozen frame uploads
+ * nothing, and the CPU work follows the drawn blocks, not the DEM (65 536 blocks at 16385²,
+ * block 64). A new layout or context builds the texture whole.
  * Not wrapped, not installed: private to geomipmap::Rendering.
  */
 #ifndef vtkGeoMipMapMorphTexture_h
@@ -84,6 +86,7 @@ private:
   size_t BandBytes = 0;
   std::vector<float> Data;
   std::vector<int> Written; // the blocks whose texels the last upload set from a frame
+  std::vector<int> WrittenCorners; // the corners (MorphFrame::corners) the last upload set
   std::vector<int> SpanLo, SpanHi; // per row, the texels an Update changed (scratch)
   int Blocks[2] = { 0, 0 };
   int Size[2] = { 0, 0 };

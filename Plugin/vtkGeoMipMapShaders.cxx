@@ -231,8 +231,9 @@ const char* const kDrape =
 // vtkGeoMipMapMorphTexture.h), then the edge or the block it lies on, its target level and
 // factor. An edge vertex starts on the edge's polyline at its level (a glided edge's
 // samples, EdgeHeights.h; the edge's own samples are on it) and moves toward the polyline
-// at the target level; an interior vertex moves toward the block's cell at the target
-// level, split as Tessellate splits it (gmm::ringCellAntiDiagonal, Levels.h), whose corners
+// at the target level; a block corner moves only onto a merging node's fan (its texel holds
+// the fan's height there: gmm::MorphFrame::cornerT); an interior vertex moves toward the
+// block's cell at the target level, split as Tessellate splits it (gmm::ringCellAntiDiagonal, Levels.h), whose corners
 // on the block's border are where their edges draw them (gmm::blockVertexTarget).
 const char* const kMorph =
   "uniform highp sampler2D gmmMorph;\n"
@@ -304,7 +305,11 @@ const char* const kMorph =
   "  ivec4 cb = gmmBandOf(ij.x, 0), rb = gmmBandOf(ij.y, gmmSampleBandsLayout.y);\n"
   "  int c = cb.x, i0 = cb.y, i1 = cb.z, r = rb.x, j0 = rb.y, j1 = rb.z;\n"
   "  bool onV = ij.x == i0 || ij.x == i1, onH = ij.y == j0 || ij.y == j1;\n"
-  "  if (onV && onH) { return h; }\n"
+  "  if (onV && onH)\n"
+  "  {\n"
+  "    vec3 k = gmmMorphAt(ij.x == i0 ? c : c + 1, 3 * br + 1 + (ij.y == j0 ? r : r + 1));\n"
+  "    return k.y > 0.0 ? h + k.y * (k.x - h) : h;\n"
+  "  }\n"
   "  if (onV) { return gmmEdgeHeight(j0, j1, ij.y, ij, false, gmmMorphAt(ij.x == i0 ? c : c + 1, br + r), h); }\n"
   "  if (onH) { return gmmEdgeHeight(i0, i1, ij.x, ij, true, gmmMorphAt(c, 2 * br + (ij.y == j0 ? r : r + 1)), h); }\n"
   "  vec3 d = gmmMorphAt(c, r);\n"

@@ -66,6 +66,7 @@ const FrameStats& Engine::update(const View& view, double tau)
     ramp_.level.resize(terrain_->qt.blockCount());
     ramp_.factor.resize(terrain_->qt.blockCount());
     ramp_.lambda.resize(terrain_->qt.blockCount());
+    ramp_.premerging.clear(); // set by a hierarchical selection only
     ramp = &ramp_;
     rampCurrent_ = true;
   }

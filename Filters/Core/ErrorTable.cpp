@@ -1,5 +1,7 @@
 #include "ErrorTable.h"
 
+#include "FanMorph.h"
+
 #include "HugePages.h"
 #include "Levels.h"
 #include "Parallel.h"
@@ -352,6 +354,10 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
 
   const std::size_t nodes = qt.nodes.size();
   resizeOnHugePages(t.mergedError, nodes, kInf);
+  for (std::vector<float>* v : { &t.fanResidual, &t.fanMovedError, &t.fanChildrenError })
+  {
+    v->assign(nodes, kInf);
+  }
   // Before the blocks: their levels' triangle counts decide which levels are allowed.
   fillCellTriangles(qt, t, threads);
   // Work items: every block, then every quadtree node (its merged fan).
@@ -379,6 +385,10 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
     for (std::size_t n; (n = nextNode.fetch_add(1)) < nodes;)
     {
       t.mergedError[n] = mergedNodeError(hf, qt, static_cast<int>(n), scratch);
+      const FanMorphErrors fan = fanMorphErrors(hf, qt, static_cast<int>(n));
+      t.fanResidual[n] = fan.residual;
+      t.fanMovedError[n] = fan.moved;
+      t.fanChildrenError[n] = fan.children;
       done.fetch_add(1, std::memory_order_relaxed);
     }
   };

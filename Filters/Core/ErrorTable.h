@@ -57,6 +57,11 @@ struct ErrorTable
   // range (a bound) elsewhere; +inf for leaves, nodes that are not mergeable and nodes
   // over nodata.
   std::vector<float> mergedError;
+  // The fan morph's exact errors of each node that merges by it (FanMorph.h, fanMorphable;
+  // +inf for the others): fanResidual[node], how far its fan is from its children at their
+  // coarsest with their corners on the fan; fanMovedError[node], those moved children's
+  // error; fanChildrenError[node], the children's own.
+  std::vector<float> fanResidual, fanMovedError, fanChildrenError;
   // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m that
   // depend on the level alone, those that nodata drops left out: at level 0 every quad
   // (drawnTriangleCount), above it its cells (HoleCells.h) and where they leave

@@ -3,6 +3,8 @@
 // vertices go at those factors: MorphTargets.cpp.
 #include "Morph.h"
 
+#include "FanMorph.h"
+
 #include "Levels.h"
 #include "MorphFactors.h"
 
@@ -95,6 +97,9 @@ void clearMorph(const Quadtree& qt, MorphFrame& out)
   out.blockTarget.assign(qt.blockCount(), -1);
   out.vEdges.assign(static_cast<std::size_t>(qt.blockCols + 1) * qt.blockRows, MorphEdge());
   out.hEdges.assign(static_cast<std::size_t>(qt.blockCols) * (qt.blockRows + 1), MorphEdge());
+  out.cornerT.assign(static_cast<std::size_t>(qt.blockCols + 1) * (qt.blockRows + 1), 0.0f);
+  out.cornerTarget.assign(out.cornerT.size(), 0.0f);
+  out.corners.clear();
   out.blocks.clear();
   out.maxBoundPixels = 0.0;
 }
@@ -107,11 +112,18 @@ void resetMorph(const Quadtree& qt, MorphFrame& out)
 {
   if (out.blockT.size() != static_cast<std::size_t>(qt.blockCount()) ||
     out.vEdges.size() != static_cast<std::size_t>(qt.blockCols + 1) * qt.blockRows ||
-    out.hEdges.size() != static_cast<std::size_t>(qt.blockCols) * (qt.blockRows + 1))
+    out.hEdges.size() != static_cast<std::size_t>(qt.blockCols) * (qt.blockRows + 1) ||
+    out.cornerT.size() != static_cast<std::size_t>(qt.blockCols + 1) * (qt.blockRows + 1))
   {
     clearMorph(qt, out);
     return;
   }
+  for (int k : out.corners)
+  {
+    out.cornerT[k] = 0.0f;
+    out.cornerTarget[k] = 0.0f;
+  }
+  out.corners.clear();
   for (int b : out.blocks)
   {
     out.blockT[b] = 0.0f;
@@ -399,6 +411,10 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
       bound = std::max(bound, stripBound(pe.side[side], edges[side]->t, tb));
     }
     out.maxBoundPixels = std::max(out.maxBoundPixels, bound * factor[b]);
+  }
+  if (ramp)
+  {
+    applyFanMorph(hf, qt, ramp->premerging, out);
   }
   // History for the next frame's rise limit: none from a frame without the path, nor for a
   // block whose factor came from bounds its measurement will replace (refreshPartErrors,

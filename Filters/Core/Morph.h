@@ -18,7 +18,8 @@
 //   target level (the next valid level of the block(s) that set the edge level), by the
 //   edge's factor. One MorphEdge per shared edge, read by both blocks: the two sides cannot
 //   disagree, so morphing opens no crack.
-// - block corners never move (every level keeps them).
+// - block corners move only onto a merging node's fan (FanMorph.h: MorphFrame::cornerT),
+//   never with a level change (every level keeps them).
 //
 // Factors keep the certificate. The drawn height of a part (inner grid, side strip) is
 // affine in the factors of its vertices, so its error is bounded by interpolating the exact
@@ -64,6 +65,12 @@ struct MorphFrame
   // (blockRows + 1) lines, index line * blockCols + c.
   std::vector<MorphEdge> vEdges;
   std::vector<MorphEdge> hEdges;
+  // Block corners gliding onto a merging node's fan (FanMorph.h), per corner point (c, r) of
+  // the block grid, index r * (blockCols + 1) + c: the factor and the fan's height there
+  // (stored units); the corners set are listed in `corners`. Empty, or all 0 but those.
+  std::vector<float> cornerT;
+  std::vector<float> cornerTarget;
+  std::vector<int> corners;
   double maxBoundPixels = 0.0; // certified bound of the morphed surface, max over blocks
   std::vector<int> blocks;     // the drawn blocks the entries above were set for
 };

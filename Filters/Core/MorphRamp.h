@@ -73,6 +73,17 @@ constexpr double kMergePopPixels = 0.3;
 // the same pops; over a quarter, a fast flight's worst pop rose (decision record 002).
 constexpr double kBesidePhaseIn = 0.5;
 
+// A quadtree node whose children glide onto its fan in a frame (FanMorph.h): its factor t
+// in (0, 1], its projection factor (pixels per unit of stored height) and its table's
+// errors of the children at their coarsest and of those children moved onto the fan.
+struct FanPremerge
+{
+  int node;
+  double t;
+  double factor;
+  float childrenError, movedError;
+};
+
 // The path's outcome for the blocks a frame selected, per block (stale for the others).
 struct MorphRamp
 {
@@ -83,6 +94,9 @@ struct MorphRamp
   std::vector<int8_t> level;   // the path's level (the selection may refine it further)
   std::vector<float> factor;   // the path's morph factor toward the next level, in [0, 1]
   std::vector<double> lambda;  // the path's continuous level (index into the block's chain)
+  // The nodes whose children glide onto their fans (hierarchical selections merging on the
+  // path, SelectNodes.h; empty after any other), which computeMorph moves.
+  std::vector<FanPremerge> premerging;
   // Per quadtree node, memo of rampNodeTopBudget (NaN: not computed yet) for the range
   // `nodeTopRange`; the engine clears it when its terrain changes.
   std::vector<double> nodeTop;
@@ -94,10 +108,16 @@ struct MorphRamp
   std::vector<double> ownPath;
   const float* ownPathErrors = nullptr;
   double ownPathSlope = std::numeric_limits<double>::quiet_NaN();
+  // Per quadtree node, memo of fanMergeBudget (FanMorph.h; NaN: not computed yet) for the
+  // range `fanMergeRange` and pixel error `fanMergeTau` (its residual's gate is in pixels).
+  std::vector<double> fanMerge;
+  double fanMergeRange = std::numeric_limits<double>::quiet_NaN();
+  double fanMergeTau = std::numeric_limits<double>::quiet_NaN();
   // Drops the memos (a new terrain: they are of the old one's blocks).
   void forgetTerrain()
   {
     nodeTop.clear();
+    fanMerge.clear();
     ownPath.clear();
     ownPathErrors = nullptr;
   }

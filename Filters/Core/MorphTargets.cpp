@@ -98,7 +98,15 @@ VertexMorph vertexMorph(const Heightfield& hf, const Quadtree& qt, const std::ve
   const std::array<int, 4> edgeLevel = edgeLevelsOf(edges);
   VertexMorph v;
   v.base = sideBaseHeight(hf, i0, i1, j0, j1, edgeLevel, i, j);
-  if (side >= 0) // on one edge (corners never move)
+  if (onV && onH) // a block corner: moves only onto a merging node's fan (FanMorph.h)
+  {
+    const std::size_t k = static_cast<std::size_t>(j == j0 ? r : r + 1) * (qt.blockCols + 1) + (i == i0 ? c : c + 1);
+    const bool moving = k < frame.cornerT.size() && frame.cornerT[k] > 0.0f;
+    v.t = moving ? frame.cornerT[k] : 0.0;
+    v.target = moving ? static_cast<double>(frame.cornerTarget[k]) : v.base;
+    return v;
+  }
+  if (side >= 0) // on one edge
   {
     v.t = edges[side]->t;
   }

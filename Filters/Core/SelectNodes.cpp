@@ -1,5 +1,6 @@
 #include "SelectNodes.h"
 
+#include "FanMorph.h"
 #include "Levels.h"
 #include "Tessellate.h"
 
@@ -58,10 +59,26 @@ public:
     {
       const double f = memoised(n.box, index, ns_.nodeFactor, ns_.nodeStamp);
       const double budget = errorBudget(tau_, f);
+      if (mergeGate_ && fanMorphs(table_, index))
+      {
+        // The fan morph (FanMorph.h): merged at the end of its path, its children gliding
+        // onto its fan before.
+        if (budget >= fanMergeBudget(qt_, table_, *mergeGate_, tau_, index))
+        {
+          merge(index, f);
+          return;
+        }
+        const double t = fanMorphFactor(qt_, table_, *mergeGate_, tau_, index, budget);
+        if (t > 0.0)
+        {
+          mergeGate_->premerging.push_back(FanPremerge{ index, t, f, table_.fanChildrenError[index],
+            table_.fanMovedError[index] });
+        }
+      }
       // Merging on geomorphing's path: only once the node's blocks have reached their top
       // level (rampNodeTopBudget), so that the merge does not skip levels, and a node whose
       // fan is not its blocks' surface only within kMergePopPixels (MorphRamp.h).
-      if (e <= budget &&
+      else if (e <= budget &&
         (!mergeGate_ ||
           (rampNodeTopBudget(qt_, table_, *mergeGate_, index) <= budget &&
             (e <= errorBudget(kMergePopPixels, f) || mergeNestsInBlocks(qt_, index)))))
@@ -262,6 +279,10 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   out.blocks.clear();
   out.merged.clear();
   out.mergedFactor.clear();
+  if (ramp)
+  {
+    ramp->premerging.clear();
+  }
   out.factor.resize(blocks);
   scratch.budget.resize(blocks);
   // Flags are cleared where last frame set them: the walk costs what it visits.
@@ -364,6 +385,17 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   }
   out.merged.resize(kept);
   out.mergedFactor.resize(kept);
+  // A node's children glide onto its fan only when they are at their coarsest, as its
+  // tables assume: a split or a strip's refinement may have changed them since the walk.
+  if (ramp)
+  {
+    std::vector<FanPremerge>& premerging = ramp->premerging;
+    premerging.erase(std::remove_if(premerging.begin(), premerging.end(),
+                       [&](const FanPremerge& p) {
+                         return ns.merged[p.node] || !childrenAtCoarsest(qt, out.levels, ns.merged, p.node);
+                       }),
+      premerging.end());
+  }
 }
 
 } // namespace gmm

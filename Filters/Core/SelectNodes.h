@@ -7,13 +7,15 @@
 // budget, or geomorphing's path when `ramp` is active, then fixStrips). With the path's
 // mergeOnPath set, a node is drawn whole only where its blocks would all be at their top
 // level on the path (rampNodeTopBudget, MorphRamp.h): merging is then the path's last step
-// instead of a jump over several levels. A block beside a merged node draws that side with
-// its corners only; when that strip does not fit the block's budget, the merged node is
-// split (its children are walked in turn) and the blocks are re-checked, until every drawn
-// block and every merged node fits. Each split goes one level down the quadtree, so this
-// ends. A re-check takes only the blocks whose level or a neighbour's changed since the
-// last check (the new blocks, and those the last round changed): the others' inputs are
-// those they were last found fitting with.
+// instead of a jump over several levels; a node that merges by the fan morph (FanMorph.h)
+// merges at the end of its own path, its children gliding onto its fan before (listed in
+// the ramp's `premerging` once the levels are final and its children at their coarsest).
+// A block beside a merged node draws that side with its corners only; when that strip does
+// not fit the block's budget, the merged node is split (its children are walked in turn)
+// and the blocks are re-checked, until every drawn block and every merged node fits. Each
+// split goes one level down the quadtree, so this ends. A re-check takes only the blocks
+// whose level or a neighbour's changed since the last check (the new blocks, and those the
+// last round changed): the others' inputs are those they were last found fitting with.
 #pragma once
 
 #include "ErrorTable.h"

@@ -5,12 +5,14 @@
 #include "Parallel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace gmm
@@ -46,8 +48,9 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // of the block width from the DEM's first sample (splitBands) instead of halves; 15: a
 // strip toward a coarser block's edge draws the block's own cells, its edge samples glided
 // onto the edge's polyline (Tessellate.h, BlockConfig::sampleLevel); 16: quadtree nodes
-// split their band ranges at a power of two (splitBand), which changes the merged nodes.
-constexpr uint32_t kFormatVersion = 16;
+// split their band ranges at a power of two (splitBand), which changes the merged nodes;
+// 17: the fan morph's three per-node errors (FanMorph.h) after the merged nodes'.
+constexpr uint32_t kFormatVersion = 17;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 
@@ -107,11 +110,20 @@ struct FileHeader
 };
 #pragma pack(pop)
 
-// The checksum a file stores after its data: the header, then the four arrays in order.
+// The arrays a file stores, in order: per block and level (two), per strip, then per node
+// (four). The one list the writer, the reader and the checksum follow.
+template <typename Table>
+std::array<decltype(&std::declval<Table&>().ownError), 7> storedArrays(Table& t)
+{
+  return { &t.ownError, &t.ownErrorExact, &t.stripError, &t.mergedError, &t.fanResidual, &t.fanMovedError,
+    &t.fanChildrenError };
+}
+
+// The checksum a file stores after its data: the header, then the arrays in order.
 uint64_t checksum(const FileHeader& h, const ErrorTable& t)
 {
   uint64_t sum = hashBytes(reinterpret_cast<const unsigned char*>(&h), sizeof h, 1);
-  for (const std::vector<float>* v : { &t.ownError, &t.ownErrorExact, &t.stripError, &t.mergedError })
+  for (const std::vector<float>* v : storedArrays(t))
   {
     sum = combine(sum, hashBytes(reinterpret_cast<const unsigned char*>(v->data()), v->size() * sizeof(float), 2));
   }
@@ -231,7 +243,7 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   const std::size_t blocks = static_cast<std::size_t>(h.blocks);
   const std::size_t own = blocks * levels, strips = blocks * 4 * std::max(1, pairs);
   const std::size_t nodes = h.nodes;
-  const std::size_t dataBytes = (2 * own + strips + nodes) * sizeof(float);
+  const std::size_t dataBytes = (2 * own + strips + 4 * nodes) * sizeof(float);
   const uintmax_t expected = sizeof h + dataBytes + sizeof(uint64_t);
   if (fs::file_size(path, ec) != expected || ec)
   {
@@ -239,15 +251,14 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   }
   out.levels = levels;
   out.pairs = pairs;
-  resizeOnHugePages(out.ownError, own);
-  resizeOnHugePages(out.ownErrorExact, own);
-  resizeOnHugePages(out.stripError, strips);
-  resizeOnHugePages(out.mergedError, nodes);
+  const std::array<std::size_t, 7> counts{ own, own, strips, nodes, nodes, nodes, nodes };
+  const std::array<std::vector<float>*, 7> arrays = storedArrays(out);
+  for (std::size_t k = 0; k < arrays.size(); ++k)
+  {
+    resizeOnHugePages(*arrays[k], counts[k]);
+    in.read(reinterpret_cast<char*>(arrays[k]->data()), counts[k] * sizeof(float));
+  }
   uint64_t stored = 0;
-  in.read(reinterpret_cast<char*>(out.ownError.data()), own * sizeof(float));
-  in.read(reinterpret_cast<char*>(out.ownErrorExact.data()), own * sizeof(float));
-  in.read(reinterpret_cast<char*>(out.stripError.data()), strips * sizeof(float));
-  in.read(reinterpret_cast<char*>(out.mergedError.data()), nodes * sizeof(float));
   in.read(reinterpret_cast<char*>(&stored), sizeof stored);
   if (!in)
   {
@@ -259,7 +270,7 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
     out = ErrorTable();
     return path + ": checksum mismatch (corrupt)";
   }
-  for (const std::vector<float>* v : { &out.ownError, &out.ownErrorExact, &out.stripError, &out.mergedError })
+  for (const std::vector<float>* v : storedArrays(out))
   {
     if (!std::all_of(v->begin(), v->end(), tableValue))
     {
@@ -313,7 +324,7 @@ std::string writeTableCache(
       return "cannot write " + tmp;
     }
     f.write(reinterpret_cast<const char*>(&h), sizeof h);
-    for (const std::vector<float>* v : { &table.ownError, &table.ownErrorExact, &table.stripError, &table.mergedError })
+    for (const std::vector<float>* v : storedArrays(table))
     {
       f.write(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(float));
     }
