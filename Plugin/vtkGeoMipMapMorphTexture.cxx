@@ -17,11 +17,17 @@ vtkGeoMipMapMorphTexture::~vtkGeoMipMapMorphTexture() = default;
 
 namespace
 {
+// The first texel column of the block corners' band (the layout in the header).
+int cornerColumn(const gmm::Quadtree& qt)
+{
+  return std::max(qt.blockCols, qt.blockRows) + 1;
+}
+
 // The texture's width and height for a quadtree (the layout in the header).
 void textureSize(const gmm::Quadtree& qt, int& width, int& height)
 {
-  width = std::max(qt.blockCols, qt.blockRows) + 1;
-  height = 4 * qt.blockRows + 2;
+  width = cornerColumn(qt) + qt.blockCols + 1;
+  height = 3 * qt.blockRows + 1;
 }
 
 // The widest row of gmmSampleBands: a power of two, so that the shader finds a sample's
@@ -105,7 +111,7 @@ template <typename Changed>
 void writeCorner(std::vector<float>& data, int width, const gmm::Quadtree& qt, const gmm::MorphFrame& f, int k,
   Changed changed)
 {
-  const int x = k % (qt.blockCols + 1), y = 3 * qt.blockRows + 1 + k / (qt.blockCols + 1);
+  const int x = cornerColumn(qt) + k % (qt.blockCols + 1), y = k / (qt.blockCols + 1);
   const bool moving = static_cast<size_t>(k) < f.cornerT.size() && f.cornerT[k] > 0.0f;
   const float v[kTexelFloats] = { moving ? f.cornerTarget[k] : 0.0f, moving ? f.cornerT[k] : 0.0f, 0.0f };
   float* p = &data[(static_cast<size_t>(y) * width + x) * kTexelFloats];

@@ -10,10 +10,11 @@
  *     rows [0, br):          blocks (c, r)
  *     rows [br, 2 br):       vertical edges (line 0..bc, r)
  *     rows [2 br, 3 br + 1): horizontal edges (c, line 0..br)
- *     rows [3 br + 1, 4 br + 2): block corners (line 0..bc, line 0..br), texel = (the merging
- *                            node's fan height there, factor, unused) (gmm::MorphFrame::cornerT)
- *   with bc x br blocks. It is the only data uploaded per frame for placing vertices (a few
- *   bytes per block); nothing per vertex. Uploaded with geomorphing off too (factors 0):
+ *   with bc x br blocks, in columns [0, max(bc, br) + 1), and beside them, from column
+ *   max(bc, br) + 1 on, the block corners (line 0..bc, line 0..br) in rows [0, br + 1),
+ *   texel = (the merging node's fan height there, factor, unused) (gmm::MorphFrame::cornerT).
+ *   It is the only data uploaded per frame for placing vertices (a few bytes per block);
+ *   nothing per vertex. Uploaded with geomorphing off too (factors 0):
  *   glided edges need their levels.
  * - gmmSampleBands, RGBA32F 2D, made once per quadtree: the block band of every sample
  *   column, then of every sample row, as (band, first sample, last sample), 2^w texels a
