@@ -33,6 +33,7 @@ struct Scratch
   // the edge polyline per side and edge level, which every ring level's strip towards that
   // edge level shares, and the inner ring's polyline per side and ring level.
   std::vector<float> edgeLine, ringLine;
+  FanMorphScratch fan;
 };
 
 float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
@@ -385,7 +386,7 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
     for (std::size_t n; (n = nextNode.fetch_add(1)) < nodes;)
     {
       t.mergedError[n] = mergedNodeError(hf, qt, static_cast<int>(n), scratch);
-      const FanMorphErrors fan = fanMorphErrors(hf, qt, static_cast<int>(n));
+      const FanMorphErrors fan = fanMorphErrors(hf, qt, static_cast<int>(n), scratch.fan);
       t.fanResidual[n] = fan.residual;
       t.fanMovedError[n] = fan.moved;
       t.fanChildrenError[n] = fan.children;

@@ -56,6 +56,14 @@ struct FanMorphErrors
 {
   float residual, moved, children;
 };
+// Buffers fanMorphErrors reuses from node to node (a node of 16 x 16 blocks of 32 quads
+// needs 2 MB for its fan's heights; allocated afresh, their pages cost a third of the pass).
+struct FanMorphScratch
+{
+  std::vector<double> fan, movedCorner;
+  std::vector<GridTriangle> triangles;
+};
+FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int node, FanMorphScratch& scratch);
 FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int node);
 
 // The height of `node`'s fan surface at sample (i, j) of the node's rectangle (borders

@@ -74,8 +74,9 @@ double fanSurfaceHeight(const Heightfield& hf, const Quadtree& qt, int node, int
 
 namespace
 {
-// Calls visit(index into the node's rectangle, a, b) for every sample that triangle t covers
-// (edges included), a and b the values interpolated from two sets given at its vertices.
+// Calls visit(i, j, index into the node's rectangle, a, b) for every sample (i, j) that
+// triangle t covers (edges included), a and b the values interpolated from two sets given
+// at its vertices.
 template <typename Visit>
 void rasterise(const GridTriangle& t, const std::array<double, 3>& a3, const std::array<double, 3>& b3, int i0,
   int j0, int width, Visit visit)
@@ -116,7 +117,7 @@ void rasterise(const GridTriangle& t, const std::array<double, 3>& a3, const std
       const int64_t w2 = sign * (int64_t(a.i - i) * (b.j - j) - int64_t(a.j - j) * (b.i - i));
       if (w0 >= 0 && w1 >= 0 && w2 >= 0)
       {
-        visit(static_cast<std::size_t>(j - j0) * width + (i - i0), (w0 * a3[0] + w1 * a3[1] + w2 * a3[2]) * inv,
+        visit(i, j, static_cast<std::size_t>(j - j0) * width + (i - i0), (w0 * a3[0] + w1 * a3[1] + w2 * a3[2]) * inv,
           (w0 * b3[0] + w1 * b3[1] + w2 * b3[2]) * inv);
       }
     }
@@ -155,6 +156,12 @@ void childrenAtCoarsestGrid(const Quadtree& qt, int node, std::vector<GridTriang
 
 FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int node)
 {
+  FanMorphScratch scratch;
+  return fanMorphErrors(hf, qt, node, scratch);
+}
+
+FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int node, FanMorphScratch& scratch)
+{
   const float inf = std::numeric_limits<float>::infinity();
   if (!fanMorphable(qt, node))
   {
@@ -168,19 +175,22 @@ FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int nod
   const GridPoint centre = mergedCentre(qt, node);
   const double z0 = hf.height(centre.i, centre.j);
   auto own = [&](GridPoint p) { return hf.height(p.i, p.j) - z0; };
-  std::vector<double> fan(static_cast<std::size_t>(width) * (j1 - j0 + 1), 0.0);
-  std::vector<GridTriangle> tris;
+  std::vector<double>& fan = scratch.fan;
+  fan.resize(static_cast<std::size_t>(width) * (j1 - j0 + 1)); // every sample is written
+  std::vector<GridTriangle>& tris = scratch.triangles;
+  tris.clear();
   emitMergedNodeGrid(qt, node, tris);
   for (const GridTriangle& t : tris)
   {
     const std::array<double, 3> h{ own(t.v[0]), own(t.v[1]), own(t.v[2]) };
-    rasterise(t, h, h, i0, j0, width, [&](std::size_t s, double f, double) { fan[s] = f; });
+    rasterise(t, h, h, i0, j0, width, [&](int, int, std::size_t s, double f, double) { fan[s] = f; });
   }
   // Every child vertex is a block corner. One strictly inside the node is drawn at the fan's
   // height as the frame stores it (a float: MorphFrame::cornerT); those on the perimeter
   // never move.
   const int cols = n.colEnd - n.colBegin + 1;
-  std::vector<double> movedCorner(static_cast<std::size_t>(cols) * (n.rowEnd - n.rowBegin + 1));
+  std::vector<double>& movedCorner = scratch.movedCorner;
+  movedCorner.resize(static_cast<std::size_t>(cols) * (n.rowEnd - n.rowBegin + 1));
   for (int r = n.rowBegin; r <= n.rowEnd; ++r)
   {
     for (int c = n.colBegin; c <= n.colEnd; ++c)
@@ -208,8 +218,8 @@ FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int nod
   {
     const std::array<double, 3> m{ moved(t.v[0]), moved(t.v[1]), moved(t.v[2]) };
     const std::array<double, 3> h{ own(t.v[0]), own(t.v[1]), own(t.v[2]) };
-    rasterise(t, m, h, i0, j0, width, [&](std::size_t s, double hm, double hc) {
-      const double sample = hf.height(i0 + static_cast<int>(s % width), j0 + static_cast<int>(s / width)) - z0;
+    rasterise(t, m, h, i0, j0, width, [&](int i, int j, std::size_t s, double hm, double hc) {
+      const double sample = hf.height(i, j) - z0;
       residual = std::max(residual, std::abs(hm - fan[s]));
       movedError = std::max(movedError, std::abs(hm - sample));
       childrenError = std::max(childrenError, std::abs(hc - sample));
