@@ -73,7 +73,8 @@ double fanSurfaceHeight(const Heightfield& hf, const Quadtree& qt, int node, int
 // The smallest error budget at which every child of `node` is at its coarsest on the path
 // (`ramp` active, merges on the path) at pixel error `tau`: a fanMorphable child merged
 // (fanMergeBudget), a 2 x 2 child that nests merged, other children with their blocks at
-// their top level (rampNodeTopBudget). Memoised in `ramp` for its range and tau.
+// their top level (rampNodeTopBudget). Memoised in `ramp` for its range and tau, as
+// fanMergeBudget is.
 double fanReadyBudget(const Quadtree& qt, const ErrorTable& table, MorphRamp& ramp, double tau, int node);
 
 // The smallest budget at which fanMorphable `node` merges: where its factor reaches 1.

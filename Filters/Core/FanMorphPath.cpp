@@ -46,38 +46,53 @@ double chainEnd(const ErrorTable& table, double tau, int node, double ready)
 }
 } // namespace
 
+namespace
+{
+// ramp's fan morph memos, started afresh for another quadtree, range or pixel error.
+void keepFanMemos(const Quadtree& qt, MorphRamp& ramp, double tau)
+{
+  if (!(ramp.fanMergeRange == ramp.range) || !(ramp.fanMergeTau == tau) || ramp.fanMerge.size() != qt.nodes.size())
+  {
+    ramp.fanReady.assign(qt.nodes.size(), std::numeric_limits<double>::quiet_NaN());
+    ramp.fanMerge.assign(qt.nodes.size(), std::numeric_limits<double>::quiet_NaN());
+    ramp.fanMergeRange = ramp.range;
+    ramp.fanMergeTau = tau;
+  }
+}
+} // namespace
+
 double fanReadyBudget(const Quadtree& qt, const ErrorTable& table, MorphRamp& ramp, double tau, int node)
 {
+  keepFanMemos(qt, ramp, tau);
+  if (!std::isnan(ramp.fanReady[node]))
+  {
+    return ramp.fanReady[node];
+  }
   const QuadtreeNode& n = qt.nodes[node];
   double x = 0.0;
   for (int k = 0; k < n.childCount; ++k)
   {
     x = std::max(x, childCoarsestBudget(qt, table, ramp, tau, n.firstChild + k));
   }
+  ramp.fanReady[node] = x;
   return x;
 }
 
 double fanMergeBudget(const Quadtree& qt, const ErrorTable& table, MorphRamp& ramp, double tau, int node)
 {
-  if (!(ramp.fanMergeRange == ramp.range) || !(ramp.fanMergeTau == tau) || ramp.fanMerge.size() != qt.nodes.size())
+  keepFanMemos(qt, ramp, tau);
+  if (!std::isnan(ramp.fanMerge[node]))
   {
-    ramp.fanMerge.assign(qt.nodes.size(), std::numeric_limits<double>::quiet_NaN());
-    ramp.fanMergeRange = ramp.range;
-    ramp.fanMergeTau = tau;
-  }
-  double& memo = ramp.fanMerge[node];
-  if (!std::isnan(memo))
-  {
-    return memo;
+    return ramp.fanMerge[node];
   }
   const double ready = fanReadyBudget(qt, table, ramp, tau, node);
   const std::array<double, 2> chain{ ready, chainEnd(table, tau, node, ready) };
   // A chain that does not rise still takes the path's range of distance to glide: the
   // corners move however close the errors are.
-  memo = !(ready < kInfD) ? kInfD
-    : chain[1] > chain[0] ? rampTopBudget(chain.data(), 2, ramp.slope())
-                          : ready * std::exp(1.0 / ramp.slope());
-  return memo;
+  ramp.fanMerge[node] = !(ready < kInfD) ? kInfD
+    : chain[1] > chain[0]                ? rampTopBudget(chain.data(), 2, ramp.slope())
+                                         : ready * std::exp(1.0 / ramp.slope());
+  return ramp.fanMerge[node];
 }
 
 double fanMorphFactor(const Quadtree& qt, const ErrorTable& table, MorphRamp& ramp, double tau, int node,

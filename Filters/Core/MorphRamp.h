@@ -108,15 +108,17 @@ struct MorphRamp
   std::vector<double> ownPath;
   const float* ownPathErrors = nullptr;
   double ownPathSlope = std::numeric_limits<double>::quiet_NaN();
-  // Per quadtree node, memo of fanMergeBudget (FanMorph.h; NaN: not computed yet) for the
-  // range `fanMergeRange` and pixel error `fanMergeTau` (its residual's gate is in pixels).
-  std::vector<double> fanMerge;
+  // Per quadtree node, memos of fanReadyBudget and fanMergeBudget (FanMorph.h; NaN: not
+  // computed yet) for the range `fanMergeRange` and pixel error `fanMergeTau` (the residual's
+  // gate is in pixels).
+  std::vector<double> fanReady, fanMerge;
   double fanMergeRange = std::numeric_limits<double>::quiet_NaN();
   double fanMergeTau = std::numeric_limits<double>::quiet_NaN();
   // Drops the memos (a new terrain: they are of the old one's blocks).
   void forgetTerrain()
   {
     nodeTop.clear();
+    fanReady.clear();
     fanMerge.clear();
     ownPath.clear();
     ownPathErrors = nullptr;
