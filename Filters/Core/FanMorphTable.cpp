@@ -152,6 +152,34 @@ void childrenAtCoarsestGrid(const Quadtree& qt, int node, std::vector<GridTriang
     }
   }
 }
+// Every child vertex is a block corner: the heights (less z0) the node's corners are drawn
+// at with the children moved onto the fan, row by row from its south-west corner. One
+// strictly inside the node is at the fan's height as the frame stores it (a float:
+// MorphFrame::cornerTarget); those on the perimeter never move.
+void movedCornerHeights(const Heightfield& hf, const Quadtree& qt, int node, double z0, std::vector<double>& out)
+{
+  const QuadtreeNode& n = qt.nodes[node];
+  const int cols = n.colEnd - n.colBegin + 1;
+  out.resize(static_cast<std::size_t>(cols) * (n.rowEnd - n.rowBegin + 1));
+  for (int r = n.rowBegin; r <= n.rowEnd; ++r)
+  {
+    for (int c = n.colBegin; c <= n.colEnd; ++c)
+    {
+      const int i = qt.colStart[c], j = qt.rowStart[r];
+      const bool perimeter = r == n.rowBegin || r == n.rowEnd || c == n.colBegin || c == n.colEnd;
+      out[static_cast<std::size_t>(r - n.rowBegin) * cols + (c - n.colBegin)] =
+        (perimeter ? hf.height(i, j) : static_cast<float>(fanSurfaceHeight(hf, qt, node, i, j))) - z0;
+    }
+  }
+}
+
+// The block grid line through band start s (bandOfSample gives the DEM's last sample to the
+// band before it).
+int gridLineOf(const std::vector<int>& start, int s)
+{
+  const int band = bandOfSample(start, s);
+  return start[band] == s ? band : band + 1;
+}
 } // namespace
 
 FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int node)
@@ -185,31 +213,11 @@ FanMorphErrors fanMorphErrors(const Heightfield& hf, const Quadtree& qt, int nod
     const std::array<double, 3> h{ own(t.v[0]), own(t.v[1]), own(t.v[2]) };
     rasterise(t, h, h, i0, j0, width, [&](int, int, std::size_t s, double f, double) { fan[s] = f; });
   }
-  // Every child vertex is a block corner. One strictly inside the node is drawn at the fan's
-  // height as the frame stores it (a float: MorphFrame::cornerT); those on the perimeter
-  // never move.
+  movedCornerHeights(hf, qt, node, z0, scratch.movedCorner);
   const int cols = n.colEnd - n.colBegin + 1;
-  std::vector<double>& movedCorner = scratch.movedCorner;
-  movedCorner.resize(static_cast<std::size_t>(cols) * (n.rowEnd - n.rowBegin + 1));
-  for (int r = n.rowBegin; r <= n.rowEnd; ++r)
-  {
-    for (int c = n.colBegin; c <= n.colEnd; ++c)
-    {
-      const GridPoint p{ qt.colStart[c], qt.rowStart[r] };
-      const bool perimeter = r == n.rowBegin || r == n.rowEnd || c == n.colBegin || c == n.colEnd;
-      movedCorner[static_cast<std::size_t>(r - n.rowBegin) * cols + (c - n.colBegin)] =
-        perimeter ? own(p) : static_cast<float>(fanSurfaceHeight(hf, qt, node, p.i, p.j)) - z0;
-    }
-  }
-  // The block grid line through band start s (bandOfSample gives the DEM's last sample to
-  // the band before it).
-  auto lineOf = [](const std::vector<int>& start, int s) {
-    const int band = bandOfSample(start, s);
-    return start[band] == s ? band : band + 1;
-  };
   auto moved = [&](GridPoint p) {
-    const int c = lineOf(qt.colStart, p.i), r = lineOf(qt.rowStart, p.j);
-    return movedCorner[static_cast<std::size_t>(r - n.rowBegin) * cols + (c - n.colBegin)];
+    const int c = gridLineOf(qt.colStart, p.i), r = gridLineOf(qt.rowStart, p.j);
+    return scratch.movedCorner[static_cast<std::size_t>(r - n.rowBegin) * cols + (c - n.colBegin)];
   };
   tris.clear();
   childrenAtCoarsestGrid(qt, node, tris);

@@ -58,12 +58,13 @@ constexpr double kMorphSettlePerFrame = 0.02;
 constexpr double kMorphRisePixels = 0.1;
 
 // While merges wait for the path (MorphRamp::mergeOnPath), a quadtree node whose fan is not
-// its blocks' surface (over more than 2 x 2 blocks: mergeNestsInBlocks, Tessellate.h) is
-// drawn whole only where its exact error also projects within this many pixels. Merging or
-// splitting it changes the drawn surface by up to its fan's error and its children's, so at
-// tau's edge it popped (1.8 px on measure_pop_causes' flight over N48W125 at tau 2); far
-// terrain, where such nodes are a few pixels wide, still merges. The bound on a
-// frame's pop (decision record 002).
+// its blocks' surface (over more than 2 x 2 blocks: mergeNestsInBlocks, Tessellate.h) merges
+// only where what the merge changes projects within this many pixels: the residual left
+// after its corners glided onto the fan (FanMorph.h), or for the nodes that do not glide
+// (bounds only, nodata below them), their error. A merge straight from the blocks changes
+// the drawn surface by up to the fan's error and its children's: at tau's edge it popped
+// (1.8 px on measure_pop_causes' flight over N48W125 at tau 2). The bound on a
+// frame's pop (decision records 002, 006).
 constexpr double kMergePopPixels = 0.3;
 
 // The last part of a neighbour's path (its factor toward its next level below this) over

@@ -141,6 +141,28 @@ NodeSurfaces surfacesOf(const gmm::Heightfield& hf, const gmm::Quadtree& qt, int
   return s;
 }
 
+// The largest distance (pixels) by which a sample of `node` in view moves on screen from
+// heights `before` to heights `now` (NaN: not drawn), both seen by `cam`.
+double worstPop(const gmm::Heightfield& hf, const gmm::Quadtree& qt, int node, const gmmtest::MyCamera& cam,
+  const std::vector<double>& before, const std::vector<double>& now)
+{
+  const gmm::QuadtreeNode& n = qt.nodes[node];
+  double worst = 0.0;
+  for (int j = qt.rowStart[n.rowBegin]; j <= qt.rowStart[n.rowEnd]; ++j)
+    for (int i = qt.colStart[n.colBegin]; i <= qt.colStart[n.colEnd]; ++i)
+    {
+      const std::size_t k = hf.index(i, j);
+      const double x = hf.worldX(i), y = hf.worldY(j);
+      double px, py, qx, qy;
+      if (std::isnan(now[k]) || std::isnan(before[k]) || !gmmtest::insideFrustum(cam, x, y, hf.z[k]) ||
+        gmmtest::project(cam, x, y, now[k], px, py) < cam.nearD ||
+        gmmtest::project(cam, x, y, before[k], qx, qy) < cam.nearD)
+        continue;
+      worst = std::max(worst, std::hypot(px - qx, py - qy));
+    }
+  return worst;
+}
+
 // A table entry is its exact value rounded up to float.
 void expectTableValue(float table, double exact, const char* what, int node)
 {
@@ -260,19 +282,7 @@ TEST(FanMorph, CornersGlideOntoTheFanAndMergesDoNotPop)
           continue;
         fromGliding += (merged[node] ? wasGliding[node] : glides[node]) ? 1 : 0;
         ++transitions;
-        const gmm::QuadtreeNode& n = qt.nodes[node];
-        for (int j = qt.rowStart[n.rowBegin]; j <= qt.rowStart[n.rowEnd]; ++j)
-          for (int i = qt.colStart[n.colBegin]; i <= qt.colStart[n.colEnd]; ++i)
-          {
-            const std::size_t k = hf.index(i, j);
-            double px, py, qx, qy;
-            if (std::isnan(surface.z[k]) || std::isnan(previous[k]) ||
-              !gmmtest::insideFrustum(cam, hf.worldX(i), hf.worldY(j), hf.z[k]) ||
-              gmmtest::project(cam, hf.worldX(i), hf.worldY(j), surface.z[k], px, py) < cam.nearD ||
-              gmmtest::project(cam, hf.worldX(i), hf.worldY(j), previous[k], qx, qy) < cam.nearD)
-              continue;
-            worstTransitionPop = std::max(worstTransitionPop, std::hypot(px - qx, py - qy));
-          }
+        worstTransitionPop = std::max(worstTransitionPop, worstPop(hf, qt, node, cam, previous, surface.z));
       }
     }
     previous = surface.z;
