@@ -94,8 +94,9 @@ bool childrenAtCoarsest(const Quadtree& qt, const std::vector<int8_t>& levels, c
 // Sets the corners of every listed node (strictly inside it) moving onto its fan by its
 // factor in `out` (reset by computeMorph, clearMorph and drawnEdgeFrame), and raises
 // out.maxBoundPixels to each node's bound: factor ((1 - t) children's error + t moved
-// children's error). computeMorph calls it with its ramp's list.
+// children's error). The corners' fan heights are kept in `memo` (reset it when the heights
+// change). computeMorph calls it with its ramp's list and its cache's memo.
 void applyFanMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<FanPremerge>& premerging,
-  MorphFrame& out);
+  FanCornerMemo& memo, MorphFrame& out);
 
 } // namespace gmm

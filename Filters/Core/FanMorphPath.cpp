@@ -140,8 +140,33 @@ bool childrenAtCoarsest(const Quadtree& qt, const std::vector<int8_t>& levels, c
   return true;
 }
 
+namespace
+{
+// The fan heights of node's interior block corners (row by row), from `memo` or made there.
+const float* fanCornerHeights(const Heightfield& hf, const Quadtree& qt, int node, FanCornerMemo& memo)
+{
+  if (memo.first.size() != qt.nodes.size())
+  {
+    memo.reset(qt.nodes.size());
+  }
+  if (memo.first[node] < 0)
+  {
+    const QuadtreeNode& n = qt.nodes[node];
+    memo.first[node] = static_cast<int32_t>(memo.heights.size());
+    for (int r = n.rowBegin + 1; r < n.rowEnd; ++r)
+    {
+      for (int c = n.colBegin + 1; c < n.colEnd; ++c)
+      {
+        memo.heights.push_back(static_cast<float>(fanSurfaceHeight(hf, qt, node, qt.colStart[c], qt.rowStart[r])));
+      }
+    }
+  }
+  return memo.heights.data() + memo.first[node];
+}
+} // namespace
+
 void applyFanMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<FanPremerge>& premerging,
-  MorphFrame& out)
+  FanCornerMemo& memo, MorphFrame& out)
 {
   const std::size_t corners = static_cast<std::size_t>(qt.blockCols + 1) * (qt.blockRows + 1);
   if (out.cornerT.size() != corners)
@@ -157,13 +182,14 @@ void applyFanMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<
       continue;
     }
     const QuadtreeNode& n = qt.nodes[p.node];
+    const float* fan = fanCornerHeights(hf, qt, p.node, memo);
     for (int r = n.rowBegin + 1; r < n.rowEnd; ++r)
     {
-      for (int c = n.colBegin + 1; c < n.colEnd; ++c)
+      for (int c = n.colBegin + 1; c < n.colEnd; ++c, ++fan)
       {
         const std::size_t k = static_cast<std::size_t>(r) * (qt.blockCols + 1) + c;
         out.cornerT[k] = static_cast<float>(p.t);
-        out.cornerTarget[k] = static_cast<float>(fanSurfaceHeight(hf, qt, p.node, qt.colStart[c], qt.rowStart[r]));
+        out.cornerTarget[k] = *fan;
         out.corners.push_back(static_cast<int>(k));
       }
     }

@@ -238,6 +238,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
     cache.held.clear();
     cache.inner.reset(blocks);
     cache.polylines.reset(blocks);
+    cache.fanCorners.reset(qt.nodes.size());
     cache.heights = hf.heights();
   }
   std::vector<int>& drawn = out.blocks;
@@ -414,7 +415,7 @@ void computeMorph(const Heightfield& hf, const Quadtree& qt, const std::vector<i
   }
   if (ramp)
   {
-    applyFanMorph(hf, qt, ramp->premerging, out);
+    applyFanMorph(hf, qt, ramp->premerging, cache.fanCorners, out);
   }
   // History for the next frame's rise limit: none from a frame without the path, nor for a
   // block whose factor came from bounds its measurement will replace (refreshPartErrors,

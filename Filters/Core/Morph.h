@@ -139,6 +139,7 @@ struct MorphCache
   std::vector<MorphPartScratch> workerScratch; // for the threads beyond the calling one
   InnerErrorMemo inner;                 // inner-grid errors by block and level
   SidePolylineMemo polylines;           // sides' polyline distances by block, side and level
+  FanCornerMemo fanCorners;             // fan morph targets by node (FanMorph.h)
   // Per frame (scratch): the drawn blocks whose parts are measured (index k into the drawn
   // blocks, and the parts as a MorphBounds.h mask).
   std::vector<std::pair<std::size_t, unsigned>> measures;
