@@ -37,17 +37,6 @@ double childCoarsestBudget(const Quadtree& qt, const ErrorTable& table, MorphRam
   return std::max({ top, e, gate });
 }
 
-// The end of the node's chain: the largest of its ready budget, the moved children's
-// error, the fan's and the budget at which its residual projects within kMergePopPixels.
-double chainEnd(const ErrorTable& table, double tau, int node, double ready)
-{
-  return std::max({ ready, static_cast<double>(table.fanMovedError[node]),
-    static_cast<double>(table.mergedError[node]), table.fanResidual[node] * tau / kMergePopPixels });
-}
-} // namespace
-
-namespace
-{
 // ramp's fan morph memos, started afresh for another quadtree, range or pixel error.
 void keepFanMemos(const Quadtree& qt, MorphRamp& ramp, double tau)
 {
@@ -58,6 +47,17 @@ void keepFanMemos(const Quadtree& qt, MorphRamp& ramp, double tau)
     ramp.fanMergeRange = ramp.range;
     ramp.fanMergeTau = tau;
   }
+}
+
+// The node's chain: from its ready budget to the largest of that, the moved children's
+// error, the fan's and the budget at which its residual projects within kMergePopPixels.
+// The one chain fanMergeBudget and fanMorphFactor follow, so that a node merges where its
+// factor reaches 1.
+std::array<double, 2> fanChain(const Quadtree& qt, const ErrorTable& table, MorphRamp& ramp, double tau, int node)
+{
+  const double ready = fanReadyBudget(qt, table, ramp, tau, node);
+  return { ready, std::max({ ready, static_cast<double>(table.fanMovedError[node]),
+                    static_cast<double>(table.mergedError[node]), table.fanResidual[node] * tau / kMergePopPixels }) };
 }
 } // namespace
 
@@ -85,30 +85,29 @@ double fanMergeBudget(const Quadtree& qt, const ErrorTable& table, MorphRamp& ra
   {
     return ramp.fanMerge[node];
   }
-  const double ready = fanReadyBudget(qt, table, ramp, tau, node);
-  const std::array<double, 2> chain{ ready, chainEnd(table, tau, node, ready) };
-  // A chain that does not rise still takes the path's range of distance to glide: the
-  // corners move however close the errors are.
-  ramp.fanMerge[node] = !(ready < kInfD) ? kInfD
-    : chain[1] > chain[0]                ? rampTopBudget(chain.data(), 2, ramp.slope())
-                                         : ready * std::exp(1.0 / ramp.slope());
+  const std::array<double, 2> chain = fanChain(qt, table, ramp, tau, node);
+  // A chain that does not rise still takes the path's range of distance to glide (the
+  // corners move however close the errors are): where fanMorphFactor's s ln(budget / ready)
+  // reaches 1.
+  ramp.fanMerge[node] = !(chain[0] < kInfD) ? kInfD
+    : chain[1] > chain[0]                   ? rampTopBudget(chain.data(), 2, ramp.slope())
+                                            : chain[0] * std::exp(1.0 / ramp.slope());
   return ramp.fanMerge[node];
 }
 
 double fanMorphFactor(const Quadtree& qt, const ErrorTable& table, MorphRamp& ramp, double tau, int node,
   double budget)
 {
-  const double ready = fanReadyBudget(qt, table, ramp, tau, node);
-  if (!(budget > ready))
+  const std::array<double, 2> chain = fanChain(qt, table, ramp, tau, node);
+  if (!(budget > chain[0]))
   {
     return 0.0;
   }
-  const std::array<double, 2> chain{ ready, chainEnd(table, tau, node, ready) };
   if (chain[1] > chain[0])
   {
     return rampPathWithSlope(chain.data(), 2, budget, ramp.slope());
   }
-  return ready > 0.0 ? std::min(1.0, ramp.slope() * std::log(budget / ready)) : 1.0;
+  return chain[0] > 0.0 ? std::min(1.0, ramp.slope() * std::log(budget / chain[0])) : 1.0;
 }
 
 bool childrenAtCoarsest(const Quadtree& qt, const std::vector<int8_t>& levels, const std::vector<uint8_t>& merged,
