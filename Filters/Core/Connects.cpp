@@ -147,9 +147,17 @@ DrawnSides drawnSidesOf(const Quadtree& qt, const std::vector<int8_t>& levels, i
 }
 
 void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int node, std::vector<uint32_t>& out, EmitScratch& scratch)
+  int node, std::vector<uint32_t>& out, EmitScratch& scratch, const std::vector<int8_t>* nodeDepth)
 {
-  emitMergedNode(hf, qt, node, out, scratch);
+  if (nodeDepth)
+  {
+    const PerimeterContext across{ levels, *nodeDepth };
+    emitMergedNode(hf, qt, node, out, scratch, &across);
+  }
+  else
+  {
+    emitMergedNode(hf, qt, node, out, scratch);
+  }
   for (int side : { East, South })
   {
     forEachBlockAlong(qt, qt.nodes[node], side, [&](int b) {
@@ -165,7 +173,7 @@ void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector
 }
 
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  std::vector<uint32_t>& out, const std::vector<int>& merged)
+  std::vector<uint32_t>& out, const std::vector<int>& merged, const std::vector<int8_t>* mergedDepth)
 {
   out.clear();
   EmitScratch scratch;
@@ -179,9 +187,18 @@ void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int
   // In node order, as the engine's slots come (Engine::indices), whatever the list's order.
   std::vector<int> nodes(merged);
   std::sort(nodes.begin(), nodes.end());
+  std::vector<int8_t> depth;
+  if (mergedDepth)
+  {
+    depth.assign(qt.nodes.size(), -1);
+    for (std::size_t k = 0; k < merged.size(); ++k)
+    {
+      depth[merged[k]] = (*mergedDepth)[k];
+    }
+  }
   for (int n : nodes)
   {
-    drawMergedArea(hf, qt, levels, n, out, scratch);
+    drawMergedArea(hf, qt, levels, n, out, scratch, mergedDepth ? &depth : nullptr);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "Engine.h"
 
+#include "CoarsePerimeter.h"
 #include "Levels.h"
 
 #include <algorithm>
@@ -46,7 +47,10 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   nodeDrawn_.assign(nodes, 0);
   nodeRedrawn_.assign(nodes, 0);
   nodeNow_.assign(nodes, 0);
+  nodeDepth_.assign(nodes, -1);
+  nodePerimeter_.clear();
   drawnMerged_.clear();
+  drawnMergedDepth_.clear();
   nodeScratch_ = NodeScratch();
   ramp_.forgetTerrain(); // its memos are of the old terrain's blocks
   indices_.clear();
@@ -77,7 +81,8 @@ const FrameStats& Engine::update(const View& view, double tau)
     const Frustum frustum = transformPlanes(frustumOf(view), toWorld);
     const BoxProjector projector(view, toWorld, metric_);
     selectHierarchically(&frustum, &projector, tau, ramp);
-    return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
+    return finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor,
+      &nodeSelection_.mergedDepth);
   }
   cullAndProject(view);
   const Terrain& t = *terrain_;
@@ -153,7 +158,7 @@ const FrameStats& Engine::updateForError(double maxError)
   if (mergedNodes_)
   {
     selectHierarchically(nullptr, nullptr, maxError / heightScale_);
-    return finishFrame(nullptr, &visibleList_, &nodeSelection_.merged);
+    return finishFrame(nullptr, &visibleList_, &nodeSelection_.merged, nullptr, &nodeSelection_.mergedDepth);
   }
   levelsFromSelection_ = false;
   selectLevelsForError(terrain_->qt, terrain_->table, maxError / heightScale_, levels_);
@@ -211,7 +216,7 @@ void Engine::drawNodeSlot(int node, FrameStats& s)
 {
   const Terrain& t = *terrain_;
   blockScratch_.clear();
-  drawMergedArea(t.hf, t.qt, levels_, node, blockScratch_, emitScratch_);
+  drawMergedArea(t.hf, t.qt, levels_, node, blockScratch_, emitScratch_, &nodeDepth_);
   arena_.assign(t.qt.blockCount() + node, blockScratch_.data(), blockScratch_.size());
   nodeDrawn_[node] = 1;
   nodeRedrawn_[node] = 1;
@@ -273,17 +278,39 @@ int Engine::drawnNodeOver(int block) const
   return n;
 }
 
-bool Engine::finishMergedNodes(
-  const std::vector<int>* merged, const std::vector<double>* mergedFactor, FrameStats& s)
+bool Engine::perimeterChanged(int node)
+{
+  const Terrain& t = *terrain_;
+  const int depth = nodeDepth_[node];
+  if (depth >= t.qt.nodes[node].height)
+  {
+    // Every block corner whatever the neighbours: changed only if it was coarse.
+    return nodePerimeter_.erase(node) > 0;
+  }
+  const PerimeterContext across{ levels_, nodeDepth_ };
+  coarsePerimeter(t.qt, node, depth, &across, perimeterScratch_);
+  std::vector<GridPoint>& drawn = nodePerimeter_[node];
+  const bool same = drawn.size() == perimeterScratch_.size() &&
+    std::equal(drawn.begin(), drawn.end(), perimeterScratch_.begin(),
+      [](GridPoint a, GridPoint b) { return a.i == b.i && a.j == b.j; });
+  if (!same)
+  {
+    drawn = perimeterScratch_;
+  }
+  return !same;
+}
+
+bool Engine::finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
+  const std::vector<int8_t>* mergedDepth, FrameStats& s)
 {
   const Terrain& t = *terrain_;
   const int blocks = t.qt.blockCount();
   bool changed = false;
   static const std::vector<int> none;
   const std::vector<int>& now = merged ? *merged : none;
-  for (int n : now)
+  for (std::size_t k = 0; k < now.size(); ++k)
   {
-    nodeNow_[n] = 1;
+    nodeNow_[now[k]] = 1;
   }
   for (int n : drawnMerged_)
   {
@@ -291,8 +318,17 @@ bool Engine::finishMergedNodes(
     {
       arena_.assign(blocks + n, nullptr, 0);
       nodeDrawn_[n] = 0;
+      nodeDepth_[n] = -1;
+      nodePerimeter_.erase(n);
       changed = true;
     }
+  }
+  // Every drawn node's depth first: a perimeter reads its neighbours' (PerimeterContext).
+  drawnMergedDepth_.resize(now.size());
+  for (std::size_t k = 0; k < now.size(); ++k)
+  {
+    drawnMergedDepth_[k] = mergedDepth ? (*mergedDepth)[k] : kFullPerimeter;
+    nodeDepth_[now[k]] = drawnMergedDepth_[k];
   }
   for (std::size_t k = 0; k < now.size(); ++k)
   {
@@ -301,13 +337,13 @@ bool Engine::finishMergedNodes(
     const QuadtreeNode& node = t.qt.nodes[n];
     ++s.mergedNodes;
     s.visibleBlocks += (node.colEnd - node.colBegin) * (node.rowEnd - node.rowBegin);
-    const double e = t.table.mergedError[n];
+    const double e = mergedErrorAt(t.qt, t.table, n, drawnMergedDepth_[k]);
     s.maxGeometricError = std::max(s.maxGeometricError, e * heightScale_);
     if (mergedFactor && e > 0.0)
     {
       s.maxScreenError = std::max(s.maxScreenError, e * (*mergedFactor)[k]);
     }
-    if (!nodeDrawn_[n])
+    if (perimeterChanged(n) || !nodeDrawn_[n])
     {
       drawNodeSlot(n, s);
       changed = true;
@@ -318,12 +354,12 @@ bool Engine::finishMergedNodes(
 }
 
 const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates,
-  const std::vector<int>* merged, const std::vector<double>* mergedFactor)
+  const std::vector<int>* merged, const std::vector<double>* mergedFactor, const std::vector<int8_t>* mergedDepth)
 {
   const Terrain& t = *terrain_;
   FrameStats s;
   arena_.beginFrame();
-  bool changed = finishMergedNodes(merged, mergedFactor, s);
+  bool changed = finishMergedNodes(merged, mergedFactor, mergedDepth, s);
   // Only blocks drawn now or last frame can change: the rest of the DEM costs nothing.
   nowDrawn_.clear();
   if (candidates)

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace gmm
@@ -109,6 +110,9 @@ public:
   bool mergedNodes() const { return mergedNodes_; }
   // The nodes drawn whole in the last frame (indices into quadtree().nodes).
   const std::vector<int>& mergedNodeList() const { return drawnMerged_; }
+  // Their perimeter depths, in the same order (CoarsePerimeter.h; kFullPerimeter: every
+  // block corner on the border).
+  const std::vector<int8_t>& mergedNodeDepths() const { return drawnMergedDepth_; }
 
   // Geomorphing's level path (MorphRamp.h): a finite range > 1 makes update(view, tau)
   // choose each block's level on a path that changes by at most one level per factor
@@ -159,9 +163,10 @@ private:
   void cullAndProject(const View& view);
   // `candidates`: the only blocks that may have a level >= 0 this frame (null: any).
   // `merged`: the nodes drawn whole, with their factors when `factor` is given.
+  // `mergedDepth`: their perimeter depths (CoarsePerimeter.h; null: full perimeters).
   const FrameStats& finishFrame(const std::vector<double>* factor,
     const std::vector<int>* candidates = nullptr, const std::vector<int>* merged = nullptr,
-    const std::vector<double>* mergedFactor = nullptr);
+    const std::vector<double>* mergedFactor = nullptr, const std::vector<int8_t>* mergedDepth = nullptr);
   // Draws merged node `node`'s slot (drawMergedArea) at this frame's levels.
   void drawNodeSlot(int node, FrameStats& s);
   // The merged node in the arena this frame that covers `block`, or -1.
@@ -171,7 +176,10 @@ private:
   void queueNodesBeside(int block);
   // The merged nodes' part of finishFrame: their slots in the arena and statistics.
   bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
-    FrameStats& s);
+    const std::vector<int8_t>* mergedDepth, FrameStats& s);
+  // Whether drawn merged node `node`'s perimeter (at this frame's depths and levels) is not
+  // the one its slot was drawn with; records the new one.
+  bool perimeterChanged(int node);
   // Budgeted frames with merged nodes: phase 1 of BudgetSelection.h on the hierarchical
   // selection, then refineWithinBudget on its blocks. False (nothing selected) when even
   // the coarsest hierarchical selection is over the budget.
@@ -181,6 +189,10 @@ private:
   // selection (blocks and merged nodes).
   std::size_t hierarchicalTriangles() const;
   double hierarchicalError() const;
+  // The merged nodes' part of hierarchicalTriangles.
+  std::size_t mergedNodesTriangles() const;
+  mutable std::vector<int8_t> countDepth_; // per node, -1 between calls
+  mutable std::vector<GridPoint> countPerimeter_;
   // Hierarchical selection for update (frustum and projector given) or updateForError
   // (both null).
   void selectHierarchically(const Frustum* frustum, const BoxProjector* projector,
@@ -196,6 +208,7 @@ private:
     std::vector<double> factor;
     std::vector<int> blocks, merged;
     std::vector<double> mergedFactor;
+    std::vector<int8_t> mergedDepth;
   };
   HierarchicalSelection budgetBest_; // the best fitting selection of a budgeted frame
   MorphRamp ramp_;
@@ -208,6 +221,13 @@ private:
   std::vector<uint8_t> nodeRedrawn_;
   std::vector<int> redrawnNodes_, nodesToRedraw_;
   std::vector<int> drawnMerged_;             // nodes drawn whole, last finished frame
+  std::vector<int8_t> drawnMergedDepth_;     // their perimeter depths (CoarsePerimeter.h)
+  // Per node: the perimeter depth of a node drawn whole now, -1 for the others (what
+  // PerimeterContext reads); per drawn node with a coarse perimeter, the points its slot
+  // was drawn with, since they change with the neighbours across.
+  std::vector<int8_t> nodeDepth_;
+  std::unordered_map<int, std::vector<GridPoint>> nodePerimeter_;
+  std::vector<GridPoint> perimeterScratch_;
   double heightScale_ = 1.0;
 
   std::vector<uint8_t> visible_;

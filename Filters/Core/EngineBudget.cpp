@@ -2,6 +2,7 @@
 // or on the hierarchical selection with merged nodes.
 #include "Engine.h"
 
+#include "CoarsePerimeter.h"
 #include "TriangleCount.h"
 
 #include <algorithm>
@@ -29,7 +30,8 @@ const FrameStats& Engine::update(const View& view, double tau, std::size_t trian
   int hierarchicalTrials = 0;
   if (mergedNodes_ && selectHierarchicallyWithinBudget(view, tau, triangleBudget, startTau, outcome))
   {
-    finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor);
+    finishFrame(&factor_, &visibleList_, &nodeSelection_.merged, &nodeSelection_.mergedFactor,
+      &nodeSelection_.mergedDepth);
   }
   else
   {
@@ -67,35 +69,77 @@ struct MergedPart
   double error = 0.0;
 };
 
-MergedPart mergedPart(const Terrain& t, const std::vector<int>& merged,
-  const std::vector<double>& mergedFactor)
+// The merged nodes' largest projected error.
+double mergedNodesError(const Terrain& t, const NodeSelection& nodes)
 {
-  MergedPart p;
-  for (std::size_t k = 0; k < merged.size(); ++k)
+  double error = 0.0;
+  for (std::size_t k = 0; k < nodes.merged.size(); ++k)
   {
-    p.triangles += mergedNodeTriangleCount(t.qt, merged[k]);
-    const double e = t.table.mergedError[merged[k]];
+    const double e = mergedErrorAt(t.qt, t.table, nodes.merged[k], nodes.mergedDepth[k]);
     if (e > 0.0)
     {
-      p.error = std::max(p.error, e * mergedFactor[k]);
+      error = std::max(error, e * nodes.mergedFactor[k]);
     }
   }
-  return p;
+  return error;
 }
 } // namespace
+
+std::size_t Engine::mergedNodesTriangles() const
+{
+  // A coarse perimeter's points depend on the neighbours across (coarsePerimeter), so those
+  // fans are counted from their perimeters at this selection's levels and depths.
+  const Terrain& t = *terrain_;
+  const NodeSelection& nodes = nodeSelection_;
+  std::size_t triangles = 0;
+  bool coarse = false;
+  for (std::size_t k = 0; k < nodes.merged.size(); ++k)
+  {
+    if (nodes.mergedDepth[k] < t.qt.nodes[nodes.merged[k]].height)
+    {
+      coarse = true;
+    }
+    else
+    {
+      triangles += mergedNodeTriangleCount(t.qt, nodes.merged[k]);
+    }
+  }
+  if (!coarse)
+  {
+    return triangles;
+  }
+  countDepth_.resize(t.qt.nodes.size(), -1);
+  for (std::size_t k = 0; k < nodes.merged.size(); ++k)
+  {
+    countDepth_[nodes.merged[k]] = nodes.mergedDepth[k];
+  }
+  const PerimeterContext across{ levels_, countDepth_ };
+  for (std::size_t k = 0; k < nodes.merged.size(); ++k)
+  {
+    if (nodes.mergedDepth[k] < t.qt.nodes[nodes.merged[k]].height)
+    {
+      coarsePerimeter(t.qt, nodes.merged[k], nodes.mergedDepth[k], &across, countPerimeter_);
+      triangles += countPerimeter_.size();
+    }
+  }
+  for (int n : nodes.merged)
+  {
+    countDepth_[n] = -1;
+  }
+  return triangles;
+}
 
 double Engine::hierarchicalError() const
 {
   const Terrain& t = *terrain_;
   return std::max(selectionScreenError(t.qt, t.table, visibleList_, levels_, factor_),
-    mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor).error);
+    mergedNodesError(t, nodeSelection_));
 }
 
 std::size_t Engine::hierarchicalTriangles() const
 {
   const Terrain& t = *terrain_;
-  return selectionTriangles(t.qt, t.table, visibleList_, levels_) +
-    mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor).triangles;
+  return selectionTriangles(t.qt, t.table, visibleList_, levels_) + mergedNodesTriangles();
 }
 
 bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
@@ -121,6 +165,7 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
     best.blocks = visibleList_;
     best.merged = nodeSelection_.merged;
     best.mergedFactor = nodeSelection_.mergedFactor;
+    best.mergedDepth = nodeSelection_.mergedDepth;
   };
   // Phase 1 (BudgetSelection.h) on the hierarchical selection: the finest tau whose
   // selection fits, bracketed, then searched to within kBudgetTauPrecision. A trial's
@@ -294,8 +339,9 @@ bool Engine::selectHierarchicallyWithinBudget(const View& view, double tau,
   visibleList_.swap(best.blocks);
   nodeSelection_.merged.swap(best.merged);
   nodeSelection_.mergedFactor.swap(best.mergedFactor);
+  nodeSelection_.mergedDepth.swap(best.mergedDepth);
   // Phase 2 on its blocks; the merged nodes stay.
-  const MergedPart fixed = mergedPart(t, nodeSelection_.merged, nodeSelection_.mergedFactor);
+  const MergedPart fixed{ mergedNodesTriangles(), mergedNodesError(t, nodeSelection_) };
   refineWithinBudget(t.qt, t.table, visibleList_, factor_, tau, triangleBudget, fixed.triangles,
     fixed.error, levels_, budgetScratch_, outcome);
   outcome.tau = hi;

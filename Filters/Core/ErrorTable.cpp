@@ -1,5 +1,6 @@
 #include "ErrorTable.h"
 
+#include "CoarsePerimeter.h"
 #include "FanMorph.h"
 
 #include "HugePages.h"
@@ -34,6 +35,7 @@ struct Scratch
   // edge level shares, and the inner ring's polyline per side and ring level.
   std::vector<float> edgeLine, ringLine;
   FanMorphScratch fan;
+  CoarsePerimeterScratch perimeter;
 };
 
 float partError(const Heightfield& hf, const Quadtree& qt, int block, const BlockConfig& cfg,
@@ -359,6 +361,9 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
   {
     v->assign(nodes, kInf);
   }
+  perimeterOffsets(qt, t.perimeterFirst);
+  t.perimeterError.assign(t.perimeterFirst.back(), kInf);
+  t.perimeterPop.assign(t.perimeterFirst.back(), kInf);
   // Before the blocks: their levels' triangle counts decide which levels are allowed.
   fillCellTriangles(qt, t, threads);
   // Work items: every block, then every quadtree node (its merged fan).
@@ -390,6 +395,9 @@ ErrorTable buildErrorTable(const Heightfield& hf, const Quadtree& qt, int thread
       t.fanResidual[n] = fan.residual;
       t.fanMovedError[n] = fan.moved;
       t.fanChildrenError[n] = fan.children;
+      const uint32_t first = t.perimeterFirst[n];
+      coarsePerimeterErrors(hf, qt, static_cast<int>(n), scratch.perimeter, t.perimeterError.data() + first,
+        t.perimeterPop.data() + first);
       done.fetch_add(1, std::memory_order_relaxed);
     }
   };

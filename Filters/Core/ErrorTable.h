@@ -62,6 +62,13 @@ struct ErrorTable
   // coarsest with their corners on the fan; fanMovedError[node], those moved children's
   // error; fanChildrenError[node], the children's own.
   std::vector<float> fanResidual, fanMovedError, fanChildrenError;
+  // Coarse perimeters of merged nodes (CoarsePerimeter.h): node n's entries, one per
+  // perimeter depth 0 to its height - 1, start at perimeterFirst[n] (nodes + 1 offsets,
+  // derived from the quadtree, not stored in cache files). perimeterError: the bound of its
+  // fan's error at that depth, whatever the neighbours add; perimeterPop: of its change
+  // from the full perimeter's fan; +inf for nodes whose perimeter stays full.
+  std::vector<uint32_t> perimeterFirst;
+  std::vector<float> perimeterError, perimeterPop;
   // cellTriangles[b * levels + m]: triangles of block b with nodata at ring level m that
   // depend on the level alone, those that nodata drops left out: at level 0 every quad
   // (drawnTriangleCount), above it its cells (HoleCells.h) and where they leave

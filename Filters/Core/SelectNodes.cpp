@@ -1,5 +1,6 @@
 #include "SelectNodes.h"
 
+#include "CoarsePerimeter.h"
 #include "FanMorph.h"
 #include "Levels.h"
 #include "Tessellate.h"
@@ -117,6 +118,7 @@ public:
     ns_.touched.push_back(index);
     out_.merged.push_back(index);
     out_.mergedFactor.push_back(f);
+    out_.mergedDepth.push_back(static_cast<int8_t>(perimeterDepth(index, f)));
     // A node the last selection drew whole is covered already (wasMerged is set during
     // selectNodes' first walk only, which reaches no node below one it draws whole).
     if (!ns_.wasMerged[index])
@@ -192,6 +194,23 @@ public:
   }
 
 private:
+  // The perimeter depth of `index` drawn whole (CoarsePerimeter.h): the coarsest within the
+  // budget; on geomorphing's path also within kPerimeterPopPixels of the full perimeter, and
+  // for a node merged by the fan morph only once its merge's residual is within that too.
+  int perimeterDepth(int index, double f) const
+  {
+    double popBudget = std::numeric_limits<double>::infinity();
+    if (mergeGate_)
+    {
+      popBudget = errorBudget(kPerimeterPopPixels, f);
+      if (fanMorphs(table_, index) && table_.fanResidual[index] > popBudget)
+      {
+        return kFullPerimeter;
+      }
+    }
+    return coarsestPerimeterDepth(qt_, table_, index, errorBudget(tau_, f), popBudget);
+  }
+
   void setCovered(const QuadtreeNode& n, int8_t level)
   {
     for (int r = n.rowBegin; r < n.rowEnd; ++r)
@@ -279,6 +298,7 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
   out.blocks.clear();
   out.merged.clear();
   out.mergedFactor.clear();
+  out.mergedDepth.clear();
   if (ramp)
   {
     ramp->premerging.clear();
@@ -380,11 +400,13 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
     {
       out.merged[kept] = out.merged[k];
       out.mergedFactor[kept] = out.mergedFactor[k];
+      out.mergedDepth[kept] = out.mergedDepth[k];
       ++kept;
     }
   }
   out.merged.resize(kept);
   out.mergedFactor.resize(kept);
+  out.mergedDepth.resize(kept);
   // A node's children glide onto its fan only when they are at their coarsest, as its
   // tables assume: a split or a strip's refinement may have changed them since the walk.
   if (ramp)
@@ -395,6 +417,29 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
                          return ns.merged[p.node] || !childrenAtCoarsest(qt, out.levels, ns.merged, p.node);
                        }),
       premerging.end());
+    // The fan morph's tables are of children drawn with full perimeters: a merged child of
+    // a node that glides keeps its full perimeter.
+    std::vector<int>& full = ns.fullPerimeter;
+    full.clear();
+    for (const FanPremerge& p : premerging)
+    {
+      const QuadtreeNode& n = qt.nodes[p.node];
+      for (int k = n.firstChild; k < n.firstChild + n.childCount; ++k)
+      {
+        if (ns.merged[k])
+        {
+          full.push_back(k);
+        }
+      }
+    }
+    std::sort(full.begin(), full.end());
+    for (std::size_t k = 0; !full.empty() && k < out.merged.size(); ++k)
+    {
+      if (std::binary_search(full.begin(), full.end(), out.merged[k]))
+      {
+        out.mergedDepth[k] = kFullPerimeter;
+      }
+    }
   }
 }
 

@@ -56,6 +56,7 @@ struct NodeScratch
   std::vector<uint8_t> recheck;
   std::vector<int> marked;
   std::vector<int> recheckList;
+  std::vector<int> fullPerimeter; // merged children of nodes whose corners glide (sorted)
 };
 
 // While it lives, the selections in `scratch` with `projector` reuse the factors they
@@ -95,6 +96,7 @@ struct NodeSelection
   std::vector<int8_t> levels; // per block
   std::vector<int> merged;
   std::vector<double> mergedFactor;
+  std::vector<int8_t> mergedDepth; // perimeter depths (CoarsePerimeter.h)
 };
 
 // `lastBlocks` null: out.levels is written whole (every block). Else out.levels, out.merged

@@ -1,5 +1,6 @@
 #include "TableCache.h"
 
+#include "CoarsePerimeter.h"
 #include "HugePages.h"
 #include "Levels.h"
 #include "Parallel.h"
@@ -49,8 +50,9 @@ constexpr char kMagic[8] = { 'G', 'M', 'M', 'T', 'A', 'B', 'L', 'E' };
 // strip toward a coarser block's edge draws the block's own cells, its edge samples glided
 // onto the edge's polyline (Tessellate.h, BlockConfig::sampleLevel); 16: quadtree nodes
 // split their band ranges at a power of two (splitBand), which changes the merged nodes;
-// 17: the fan morph's three per-node errors (FanMorph.h) after the merged nodes'.
-constexpr uint32_t kFormatVersion = 17;
+// 17: the fan morph's three per-node errors (FanMorph.h) after the merged nodes'; 18: the
+// coarse perimeters' errors and changes (CoarsePerimeter.h) after those.
+constexpr uint32_t kFormatVersion = 18;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 constexpr const char* kExtension = ".gmmtable";
 
@@ -110,13 +112,14 @@ struct FileHeader
 };
 #pragma pack(pop)
 
-// The arrays a file stores, in order: per block and level (two), per strip, then per node
-// (four). The one list the writer, the reader and the checksum follow.
+// The arrays a file stores, in order: per block and level (two), per strip, per node
+// (four), then per node and perimeter depth (two). The one list the writer, the reader and
+// the checksum follow.
 template <typename Table>
-std::array<decltype(&std::declval<Table&>().ownError), 7> storedArrays(Table& t)
+std::array<decltype(&std::declval<Table&>().ownError), 9> storedArrays(Table& t)
 {
   return { &t.ownError, &t.ownErrorExact, &t.stripError, &t.mergedError, &t.fanResidual, &t.fanMovedError,
-    &t.fanChildrenError };
+    &t.fanChildrenError, &t.perimeterError, &t.perimeterPop };
 }
 
 // The checksum a file stores after its data: the header, then the arrays in order.
@@ -243,7 +246,9 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   const std::size_t blocks = static_cast<std::size_t>(h.blocks);
   const std::size_t own = blocks * levels, strips = blocks * 4 * std::max(1, pairs);
   const std::size_t nodes = h.nodes;
-  const std::size_t dataBytes = (2 * own + strips + 4 * nodes) * sizeof(float);
+  perimeterOffsets(qt, out.perimeterFirst); // derived from the quadtree, not stored
+  const std::size_t depths = out.perimeterFirst.back();
+  const std::size_t dataBytes = (2 * own + strips + 4 * nodes + 2 * depths) * sizeof(float);
   const uintmax_t expected = sizeof h + dataBytes + sizeof(uint64_t);
   if (fs::file_size(path, ec) != expected || ec)
   {
@@ -251,8 +256,8 @@ std::string readTableCache(const std::string& path, const TableCacheKey& key, co
   }
   out.levels = levels;
   out.pairs = pairs;
-  const std::array<std::size_t, 7> counts{ own, own, strips, nodes, nodes, nodes, nodes };
-  const std::array<std::vector<float>*, 7> arrays = storedArrays(out);
+  const std::array<std::size_t, 9> counts{ own, own, strips, nodes, nodes, nodes, nodes, depths, depths };
+  const std::array<std::vector<float>*, 9> arrays = storedArrays(out);
   for (std::size_t k = 0; k < arrays.size(); ++k)
   {
     resizeOnHugePages(*arrays[k], counts[k]);

@@ -198,13 +198,42 @@ GridPoint mergedCentre(const Quadtree& qt, int node);
 // Quadtree::sideAtFullResolution).
 void mergedPerimeter(const Quadtree& qt, int node, std::vector<GridPoint>& out);
 
+// Coarse perimeters (CoarsePerimeter.h): a merged node whose error allows it draws its fan
+// to fewer points, those of the depth-d partition of its border (its band ranges split d
+// times by splitBand; depth >= the node's height: every block corner, as above), plus
+// every point the drawn neighbours across need: the corners of a block drawn by itself,
+// and the points of a merged node's own perimeter. Both sides of a shared line then have
+// the same points, the union of what each wants, so no crack or T-junction appears. What
+// a perimeter depends on in a frame: the level list and, per quadtree node, the perimeter
+// depth of each node drawn whole (-1 for the others).
+struct PerimeterContext
+{
+  const std::vector<int8_t>& levels;
+  const std::vector<int8_t>& depth;
+};
+
+// Whether band boundary c (a block column or row) is an end of one of the ranges that
+// splitting [b0, b1) `depth` times by splitBand gives.
+bool partitionBoundary(int b0, int b1, int depth, int c);
+
+// The node's perimeter, counter-clockwise from its south-west corner like mergedPerimeter,
+// at perimeter depth `depth` (< the node's height), with the points the neighbours across
+// want when `across` is given (else the node's own only). The node has no side at full
+// resolution (perimeterCoarsens, CoarsePerimeter.h).
+void coarsePerimeter(const Quadtree& qt, int node, int depth, const PerimeterContext* across,
+  std::vector<GridPoint>& out);
+
 // A merged node's fan, as indices (appended; triangles over nodata dropped as in
 // emitBlock) or as grid points (appended, nodata or not). The scratch's `outer` holds the
-// perimeter.
+// perimeter. `across` given: the node's perimeter is at its depth there (coarsePerimeter),
+// else every block corner.
 void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out);
 void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out,
-  EmitScratch& scratch);
+  EmitScratch& scratch, const PerimeterContext* across = nullptr);
 void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out);
+// The fan of `node` at perimeter depth `depth` with no neighbour's points (the tables').
+void emitCoarseMergedNodeGrid(const Quadtree& qt, int node, int depth, std::vector<GridTriangle>& out,
+  std::vector<GridPoint>& perimeter);
 
 // Whether `block`, at a one-quad level (Levels.h) with `config`, is drawn as one cell over
 // every sample of its sides at full resolution instead of two triangles, with `fine`
@@ -295,14 +324,18 @@ void drawArea(const Heightfield& hf, const Quadtree& qt, int block, const DrawnS
 // connects: the west / north strips of the drawn blocks along its east / south side, any
 // number of them of any sizes (a merged node across draws none: their perimeters meet).
 // The connects change only with those blocks' drawArea (their keys, DrawnSides).
+// `nodeDepth` given: the drawn merged nodes' perimeter depths (PerimeterContext), else
+// every merged node's perimeter has every block corner.
 void drawMergedArea(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  int node, std::vector<uint32_t>& out, EmitScratch& scratch);
+  int node, std::vector<uint32_t>& out, EmitScratch& scratch, const std::vector<int8_t>* nodeDepth = nullptr);
 
 // Tessellates every drawn block (levels[b] >= 0, each a valid level of its block) in
 // block order with drawArea, then the merged nodes listed in `merged` (their blocks at
 // kCoveredLevel) in node order with drawMergedArea: the order of Engine::indices(). `out`
-// is cleared first.
+// is cleared first. `mergedDepth`, given, holds the perimeter depth of each listed node
+// (CoarsePerimeter.h; Engine::mergedNodeDepths), else every perimeter is full.
 void tessellate(const Heightfield& hf, const Quadtree& qt, const std::vector<int8_t>& levels,
-  std::vector<uint32_t>& out, const std::vector<int>& merged = {});
+  std::vector<uint32_t>& out, const std::vector<int>& merged = {},
+  const std::vector<int8_t>* mergedDepth = nullptr);
 
 } // namespace gmm

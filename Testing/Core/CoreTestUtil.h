@@ -3,6 +3,7 @@
 // use them check the engine independently of the code that makes the claims.
 #pragma once
 
+#include "CoarsePerimeter.h"
 #include "Engine.h"
 #include "Heightfield.h"
 #include "Morph.h"
@@ -149,12 +150,24 @@ inline void randomEngineFrame(gmm::Engine& e, Rng& rng)
 // each path that spans at least 2 x 2 blocks is drawn whole, a fan with one triangle per
 // block side on its border, 2 (cols + rows); a block not below one is a single quad, two
 // triangles.
+// Per quadtree node, the perimeter depth of each node the engine drew whole in its last
+// frame, -1 for the others (PerimeterContext's depths).
+inline std::vector<int8_t> drawnNodeDepths(const gmm::Engine& e)
+{
+  std::vector<int8_t> depth(e.quadtree().nodes.size(), -1);
+  for (std::size_t k = 0; k < e.mergedNodeList().size(); ++k)
+    depth[e.mergedNodeList()[k]] = e.mergedNodeDepths()[k];
+  return depth;
+}
+
 inline std::size_t coarsestTriangles(const gmm::Quadtree& qt, bool mergedNodes = true, int node = 0)
 {
   const gmm::QuadtreeNode& n = qt.nodes[node];
   const int cols = n.colEnd - n.colBegin, rows = n.rowEnd - n.rowBegin;
+  // A node drawn whole: a fan to its four corners where its perimeter may be coarse
+  // (CoarsePerimeter.h), else to every block corner on its border.
   if (mergedNodes && cols >= 2 && rows >= 2)
-    return 2u * static_cast<std::size_t>(cols + rows);
+    return gmm::perimeterCoarsens(qt, node) ? 4u : 2u * static_cast<std::size_t>(cols + rows);
   if (n.childCount == 0)
     return 2u;
   std::size_t sum = 0;

@@ -91,8 +91,10 @@ void checkFrame(const gmm::Engine& e, const std::string& what, Found& found)
   for (int b = 0; b < qt.blockCount(); ++b)
     if (levels[b] >= 0)
       gmm::emitBlock(hf, qt, b, gmm::blockConfigOf(qt, levels, b), gmm::BlockPart::Whole, own, scratch);
+  const std::vector<int8_t> depth = drawnNodeDepths(e);
+  const gmm::PerimeterContext across{ levels, depth };
   for (int n : e.mergedNodeList())
-    gmm::emitMergedNode(hf, qt, n, own);
+    gmm::emitMergedNode(hf, qt, n, own, scratch, &across);
   EXPECT_TRUE(trianglesOf(e.indices()) == trianglesOf(own))
     << what << ": the slots do not hold every block's triangles exactly once";
 

@@ -68,7 +68,7 @@ void expectFrameConsistent(const gmm::Engine& e, Mirror& m, const std::string& w
   ASSERT_TRUE(m.buffer == e.indexArena().indices()) << what << ": mirror differs";
   ASSERT_EQ(m.buffer.size() % 3, 0u);
   std::vector<uint32_t> fresh;
-  gmm::tessellate(e.heightfield(), e.quadtree(), e.levels(), fresh, e.mergedNodeList());
+  gmm::tessellate(e.heightfield(), e.quadtree(), e.levels(), fresh, e.mergedNodeList(), &e.mergedNodeDepths());
   ASSERT_TRUE(e.indices() == fresh) << what << ": indices() is not a fresh tessellation";
   ASSERT_TRUE(sortedTriangles(m.buffer, true) == sortedTriangles(fresh, false))
     << what << ": drawn triangles differ from a fresh tessellation";

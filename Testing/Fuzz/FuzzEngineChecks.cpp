@@ -51,7 +51,7 @@ void checkFrame(const gmm::Engine& e, bool hasNodata, int maxQ, bool compareFres
   {
     // the per-block cache must give the same triangle set as a fresh tessellation
     std::vector<uint32_t> fresh;
-    gmm::tessellate(hf, qt, e.levels(), fresh, e.mergedNodeList());
+    gmm::tessellate(hf, qt, e.levels(), fresh, e.mergedNodeList(), &e.mergedNodeDepths());
     auto canon = [](const std::vector<uint32_t>& v) {
       std::vector<std::array<uint32_t, 3>> t;
       for (std::size_t i = 0; i + 2 < v.size(); i += 3)
