@@ -2,7 +2,6 @@
 // exact tables, and the depth a node drawn whole takes.
 #include "CoarsePerimeter.h"
 
-#include "FanRaster.h"
 #include "RasterError.h"
 #include "Tessellate.h"
 
@@ -47,6 +46,58 @@ void perimeterOffsets(const Quadtree& qt, std::vector<uint32_t>& first)
   first[qt.nodes.size()] = at;
 }
 
+namespace
+{
+// One side's partitions as an implicit binary tree (heap order, root 1, children 2k and
+// 2k + 1 down to depth `depths`): each entry a segment of the side, the fan's triangle from
+// `centre` over it. A segment of one band is its own children, so every depth has an entry
+// wherever a sample's ray leaves. `vertical`: the side is a column of samples at `line`.
+using Segment = PerimeterSegment;
+
+void buildSegments(const std::vector<int>& start, int b0, int b1, const double* heights, int depths,
+  GridPoint centre, bool vertical, int line, std::vector<Segment>& tree)
+{
+  tree.assign(std::size_t{ 2 } << depths, Segment());
+  struct Range
+  {
+    int lo, hi;
+  };
+  std::vector<Range> range(tree.size());
+  range[1] = { b0, b1 };
+  auto point = [&](int k) { return vertical ? GridPoint{ line, start[k] } : GridPoint{ start[k], line }; };
+  for (std::size_t k = 1; k < tree.size(); ++k)
+  {
+    const Range r = range[k];
+    const int m = r.hi - r.lo > 1 ? splitBand(r.lo, r.hi) : r.hi;
+    Segment& g = tree[k];
+    g.a = point(r.lo);
+    g.b = point(r.hi);
+    g.ha = heights[r.lo - b0];
+    g.hb = heights[r.hi - b0];
+    // The triangle (centre, a, b) as rasterising weighs it: integer barycentric weights.
+    const int64_t area =
+      int64_t(g.a.i - centre.i) * (g.b.j - centre.j) - int64_t(g.a.j - centre.j) * (g.b.i - centre.i);
+    g.sign = area >= 0 ? 1 : -1;
+    g.inv = area != 0 ? 1.0 / std::abs(static_cast<double>(area)) : 0.0;
+    g.split = start[m];
+    if (2 * k + 1 < tree.size())
+    {
+      range[2 * k] = r.hi - r.lo > 1 ? Range{ r.lo, m } : r;
+      range[2 * k + 1] = r.hi - r.lo > 1 ? Range{ m, r.hi } : r;
+    }
+  }
+}
+
+// The height of triangle (c, g.a, g.b) at (i, j), with c's height 0: its integer
+// barycentric weights, so that a plane is reproduced as rasterising does.
+inline double heightOn(const Segment& g, GridPoint c, int i, int j)
+{
+  const int64_t wa = g.sign * (int64_t(g.b.i - i) * (c.j - j) - int64_t(g.b.j - j) * (c.i - i));
+  const int64_t wb = g.sign * (int64_t(c.i - i) * (g.a.j - j) - int64_t(c.j - j) * (g.a.i - i));
+  return (wa * g.ha + wb * g.hb) * g.inv;
+}
+} // namespace
+
 void coarsePerimeterErrors(const Heightfield& hf, const Quadtree& qt, int node, CoarsePerimeterScratch& scratch,
   float* error, float* pop)
 {
@@ -60,41 +111,101 @@ void coarsePerimeterErrors(const Heightfield& hf, const Quadtree& qt, int node, 
   }
   const int i0 = qt.colStart[n.colBegin], i1 = qt.colStart[n.colEnd];
   const int j0 = qt.rowStart[n.rowBegin], j1 = qt.rowStart[n.rowEnd];
-  const int width = i1 - i0 + 1;
   // Heights relative to the fan's centre sample: errors from differences, as the table's.
   const GridPoint centre = mergedCentre(qt, node);
   const double z0 = hf.height(centre.i, centre.j);
-  auto own = [&](GridPoint p) { return hf.height(p.i, p.j) - z0; };
-  std::vector<double>& full = scratch.fan;
-  full.resize(static_cast<std::size_t>(width) * (j1 - j0 + 1)); // every sample is written
-  std::vector<GridTriangle>& tris = scratch.triangles;
-  tris.clear();
-  emitMergedNodeGrid(qt, node, tris);
-  double fullError = 0.0;
-  for (const GridTriangle& t : tris)
+  // The heights at the band boundaries along each side (less z0): south, north (by column
+  // band), west, east (by row band), and each side's partitions down to the full perimeter
+  // (depth `depths`: single bands).
+  const int cols = n.colEnd - n.colBegin, rows = n.rowEnd - n.rowBegin;
+  std::vector<double>& border = scratch.borderHeights;
+  border.resize(2 * static_cast<std::size_t>(cols + 1) + 2 * static_cast<std::size_t>(rows + 1));
+  double* south = border.data();
+  double* north = south + cols + 1;
+  double* west = north + cols + 1;
+  double* east = west + rows + 1;
+  for (int c = 0; c <= cols; ++c)
   {
-    const std::array<double, 3> h{ own(t.v[0]), own(t.v[1]), own(t.v[2]) };
-    rasteriseFanTriangle(t, h, h, i0, j0, width, [&](int i, int j, std::size_t s, double f, double) {
-      full[s] = f;
-      fullError = std::max(fullError, std::abs(f - (hf.height(i, j) - z0)));
-    });
+    south[c] = hf.height(qt.colStart[n.colBegin + c], j0) - z0;
+    north[c] = hf.height(qt.colStart[n.colBegin + c], j1) - z0;
   }
-  // From the finest depth down, each depth's largest over it and every finer one.
-  double e = fullError, p = 0.0;
+  for (int r = 0; r <= rows; ++r)
+  {
+    west[r] = hf.height(i0, qt.rowStart[n.rowBegin + r]) - z0;
+    east[r] = hf.height(i1, qt.rowStart[n.rowBegin + r]) - z0;
+  }
+  std::array<std::vector<Segment>, 4>& tree = scratch.sides;
+  buildSegments(qt.colStart, n.colBegin, n.colEnd, south, depths, centre, false, j0, tree[South]);
+  buildSegments(qt.colStart, n.colBegin, n.colEnd, north, depths, centre, false, j1, tree[North]);
+  buildSegments(qt.rowStart, n.rowBegin, n.rowEnd, west, depths, centre, true, i0, tree[West]);
+  buildSegments(qt.rowStart, n.rowBegin, n.rowEnd, east, depths, centre, true, i1, tree[East]);
+  // One pass over the node's samples for every depth: a fan's triangle is linear along the
+  // ray from the centre, so a sample's height on the fan of any perimeter is the centre's
+  // and the perimeter's where the ray leaves the node, on the segment of that partition
+  // (fanSurfaceHeight's rule). Per depth, the largest |fan - sample| and |fan - full fan|.
+  std::vector<double>& worst = scratch.worst;
+  worst.assign(2 * static_cast<std::size_t>(depths), 0.0);
+  double* e = worst.data();
+  double* p = e + depths;
+  std::vector<double>& at = scratch.depthHeights;
+  at.resize(static_cast<std::size_t>(depths) + 1);
+  double fullError = 0.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  // Where the ray through column i leaves through the east or west side, in units of its
+  // step (inf on the centre's column): per column once, not per sample.
+  std::vector<double>& exitX = scratch.exitX;
+  exitX.resize(static_cast<std::size_t>(i1 - i0) + 1);
+  for (int i = i0; i <= i1; ++i)
+  {
+    const int dx = i - centre.i;
+    exitX[i - i0] = dx > 0 ? double(i1 - centre.i) / dx : dx < 0 ? double(i0 - centre.i) / dx : inf;
+  }
+  for (int j = j0; j <= j1; ++j)
+  {
+    const float* row = hf.heights() + hf.index(i0, j);
+    const int dy = j - centre.j;
+    const double sy = dy > 0 ? double(j1 - centre.j) / dy : dy < 0 ? double(j0 - centre.j) / dy : inf;
+    for (int i = i0; i <= i1; ++i)
+    {
+      const double sample = row[i - i0] - z0;
+      const int dx = i - centre.i;
+      if (dx == 0 && dy == 0)
+      {
+        fullError = std::max(fullError, std::abs(sample));
+        for (int d = 0; d < depths; ++d)
+          e[d] = std::max(e[d], std::abs(sample));
+        continue;
+      }
+      const double sx = exitX[i - i0];
+      const bool vertical = sx <= sy; // leaves through the east or west side
+      // Where the ray leaves picks each depth's segment (on a tie both give the same
+      // height: the sample is on their common edge); the height is the triangle's.
+      const double s = std::min(sx, sy);
+      const double along = vertical ? centre.j + s * dy : centre.i + s * dx;
+      const Segment* side = tree[vertical ? (dx > 0 ? East : West) : (dy > 0 ? North : South)].data();
+      std::size_t k = 1;
+      for (int d = 0; d <= depths; ++d)
+      {
+        const Segment& g = side[k];
+        at[d] = heightOn(g, centre, i, j);
+        k = 2 * k + (along >= g.split ? 1 : 0);
+      }
+      fullError = std::max(fullError, std::abs(at[depths] - sample));
+      for (int d = 0; d < depths; ++d)
+      {
+        e[d] = std::max(e[d], std::abs(at[d] - sample));
+        p[d] = std::max(p[d], std::abs(at[d] - at[depths]));
+      }
+    }
+  }
+  // Each depth's largest over it and every finer one (the full perimeter's error included).
+  double cumError = fullError, cumPop = 0.0;
   for (int d = depths - 1; d >= 0; --d)
   {
-    tris.clear();
-    emitCoarseMergedNodeGrid(qt, node, d, tris, scratch.perimeter);
-    for (const GridTriangle& t : tris)
-    {
-      const std::array<double, 3> h{ own(t.v[0]), own(t.v[1]), own(t.v[2]) };
-      rasteriseFanTriangle(t, h, h, i0, j0, width, [&](int i, int j, std::size_t s, double f, double) {
-        e = std::max(e, std::abs(f - (hf.height(i, j) - z0)));
-        p = std::max(p, std::abs(f - full[s]));
-      });
-    }
-    error[d] = roundUpToFloat(e);
-    pop[d] = roundUpToFloat(p);
+    cumError = std::max(cumError, e[d]);
+    cumPop = std::max(cumPop, p[d]);
+    error[d] = roundUpToFloat(cumError);
+    pop[d] = roundUpToFloat(cumPop);
   }
 }
 

@@ -21,8 +21,10 @@
 
 #include "ErrorTable.h"
 #include "Heightfield.h"
+#include "GridTypes.h"
 #include "Quadtree.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -49,11 +51,19 @@ bool perimeterCoarsens(const Quadtree& qt, int node);
 void perimeterOffsets(const Quadtree& qt, std::vector<uint32_t>& first);
 
 // Buffers coarsePerimeterErrors reuses from node to node.
+// A segment of a node's side in one of its partitions: its ends and their heights (less the
+// centre's), the fan triangle's orientation and 1 / |its doubled area|, and where along the
+// side its two halves part.
+struct PerimeterSegment
+{
+  GridPoint a{ 0, 0 }, b{ 0, 0 };
+  double ha = 0.0, hb = 0.0, inv = 0.0, split = 0.0;
+  int64_t sign = 1;
+};
 struct CoarsePerimeterScratch
 {
-  std::vector<double> fan;
-  std::vector<GridTriangle> triangles;
-  std::vector<GridPoint> perimeter;
+  std::vector<double> worst, depthHeights, borderHeights, exitX;
+  std::array<std::vector<PerimeterSegment>, 4> sides; // per side (Side order), its partitions
 };
 
 // The exact tables of `node`, its height entries each (depth 0 first): error[d], the

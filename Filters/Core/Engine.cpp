@@ -48,6 +48,7 @@ void Engine::setTerrain(std::shared_ptr<const Terrain> terrain)
   nodeRedrawn_.assign(nodes, 0);
   nodeNow_.assign(nodes, 0);
   nodeDepth_.assign(nodes, -1);
+  nodeRecheck_.assign(nodes, 0);
   nodePerimeter_.clear();
   drawnMerged_.clear();
   drawnMergedDepth_.clear();
@@ -300,8 +301,101 @@ bool Engine::perimeterChanged(int node)
   return !same;
 }
 
+int Engine::drawnNodeCovering(int block) const
+{
+  const Quadtree& qt = terrain_->qt;
+  const int c = block % qt.blockCols, r = block / qt.blockCols;
+  int at = 0;
+  while (nodeDepth_[at] < 0)
+  {
+    const QuadtreeNode& node = qt.nodes[at];
+    int next = -1;
+    for (int k = node.firstChild; k < node.firstChild + node.childCount && next < 0; ++k)
+    {
+      const QuadtreeNode& child = qt.nodes[k];
+      next = c >= child.colBegin && c < child.colEnd && r >= child.rowBegin && r < child.rowEnd ? k : -1;
+    }
+    if (next < 0)
+    {
+      return -1;
+    }
+    at = next;
+  }
+  return at;
+}
+
+void Engine::markNodesBeside(int block)
+{
+  const Quadtree& qt = terrain_->qt;
+  for (int nb : qt.blockNeighbours(block))
+  {
+    if (nb >= 0 && levels_[nb] == kCoveredLevel)
+    {
+      const int n = drawnNodeCovering(nb);
+      if (n >= 0 && !nodeRecheck_[n])
+      {
+        nodeRecheck_[n] = 1;
+        recheckNodes_.push_back(n);
+      }
+    }
+  }
+}
+
+void Engine::markNodesAround(int node)
+{
+  // The blocks across its border, side by side: a run of them under one drawn node is
+  // looked up once.
+  const Quadtree& qt = terrain_->qt;
+  const QuadtreeNode& n = qt.nodes[node];
+  int last = -1;
+  auto across = [&](int c, int r) {
+    if (c < 0 || r < 0 || c >= qt.blockCols || r >= qt.blockRows)
+    {
+      return;
+    }
+    const int b = qt.blockIndex(c, r);
+    if (levels_[b] != kCoveredLevel)
+    {
+      return;
+    }
+    if (last >= 0)
+    {
+      const QuadtreeNode& seen = qt.nodes[last];
+      if (c >= seen.colBegin && c < seen.colEnd && r >= seen.rowBegin && r < seen.rowEnd)
+      {
+        return;
+      }
+    }
+    last = drawnNodeCovering(b);
+    if (last >= 0 && !nodeRecheck_[last])
+    {
+      nodeRecheck_[last] = 1;
+      recheckNodes_.push_back(last);
+    }
+  };
+  for (int c = n.colBegin; c < n.colEnd; ++c)
+  {
+    across(c, n.rowBegin - 1);
+  }
+  last = -1;
+  for (int c = n.colBegin; c < n.colEnd; ++c)
+  {
+    across(c, n.rowEnd);
+  }
+  last = -1;
+  for (int r = n.rowBegin; r < n.rowEnd; ++r)
+  {
+    across(n.colBegin - 1, r);
+  }
+  last = -1;
+  for (int r = n.rowBegin; r < n.rowEnd; ++r)
+  {
+    across(n.colEnd, r);
+  }
+}
+
 bool Engine::finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
-  const std::vector<int8_t>* mergedDepth, FrameStats& s)
+  const std::vector<int8_t>* mergedDepth, const std::vector<int>* candidates, FrameStats& s)
 {
   const Terrain& t = *terrain_;
   const int blocks = t.qt.blockCount();
@@ -324,11 +418,24 @@ bool Engine::finishMergedNodes(const std::vector<int>* merged, const std::vector
     }
   }
   // Every drawn node's depth first: a perimeter reads its neighbours' (PerimeterContext).
+  // A node new or at another depth changes its neighbours' perimeters as well as its own.
+  bool coarse = !nodePerimeter_.empty();
   drawnMergedDepth_.resize(now.size());
+  changedNodes_.clear();
   for (std::size_t k = 0; k < now.size(); ++k)
   {
+    const int n = now[k];
     drawnMergedDepth_[k] = mergedDepth ? (*mergedDepth)[k] : kFullPerimeter;
-    nodeDepth_[now[k]] = drawnMergedDepth_[k];
+    coarse = coarse || drawnMergedDepth_[k] < t.qt.nodes[n].height;
+    if (!nodeDrawn_[n] || nodeDepth_[n] != drawnMergedDepth_[k])
+    {
+      changedNodes_.push_back(n);
+    }
+    nodeDepth_[n] = drawnMergedDepth_[k];
+  }
+  if (coarse)
+  {
+    markPerimetersToRecheck(candidates);
   }
   for (std::size_t k = 0; k < now.size(); ++k)
   {
@@ -343,14 +450,65 @@ bool Engine::finishMergedNodes(const std::vector<int>* merged, const std::vector
     {
       s.maxScreenError = std::max(s.maxScreenError, e * (*mergedFactor)[k]);
     }
-    if (perimeterChanged(n) || !nodeDrawn_[n])
+    if ((nodeRecheck_[n] && perimeterChanged(n)) || !nodeDrawn_[n])
     {
       drawNodeSlot(n, s);
       changed = true;
     }
   }
+  for (int n : recheckNodes_)
+  {
+    nodeRecheck_[n] = 0;
+  }
+  recheckNodes_.clear();
   drawnMerged_ = now;
   return changed;
+}
+
+void Engine::markPerimetersToRecheck(const std::vector<int>* candidates)
+{
+  // A coarse perimeter reads the drawn state of the blocks across it and the depths of the
+  // nodes drawn whole there (coarsePerimeter): only the nodes beside a change look again.
+  for (int n : changedNodes_)
+  {
+    if (!nodeRecheck_[n])
+    {
+      nodeRecheck_[n] = 1;
+      recheckNodes_.push_back(n);
+    }
+    markNodesAround(n);
+  }
+  for (int n : drawnMerged_)
+  {
+    if (nodeDepth_[n] < 0)
+    {
+      markNodesAround(n); // no longer drawn whole
+    }
+  }
+  // Blocks drawn by themselves last frame and not now, or now and not then.
+  for (int b : drawnList_)
+  {
+    if (levels_[b] < 0)
+    {
+      markNodesBeside(b);
+    }
+  }
+  auto newlyDrawn = [&](int b) {
+    if (levels_[b] >= 0 && drawnConfig_[b].level < 0)
+    {
+      markNodesBeside(b);
+    }
+  };
+  if (candidates)
+  {
+    for (int b : *candidates)
+      newlyDrawn(b);
+  }
+  else
+  {
+    for (int b = 0; b < terrain_->qt.blockCount(); ++b)
+      newlyDrawn(b);
+  }
 }
 
 const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const std::vector<int>* candidates,
@@ -359,7 +517,7 @@ const FrameStats& Engine::finishFrame(const std::vector<double>* factor, const s
   const Terrain& t = *terrain_;
   FrameStats s;
   arena_.beginFrame();
-  bool changed = finishMergedNodes(merged, mergedFactor, mergedDepth, s);
+  bool changed = finishMergedNodes(merged, mergedFactor, mergedDepth, candidates, s);
   // Only blocks drawn now or last frame can change: the rest of the DEM costs nothing.
   nowDrawn_.clear();
   if (candidates)

@@ -176,7 +176,18 @@ private:
   void queueNodesBeside(int block);
   // The merged nodes' part of finishFrame: their slots in the arena and statistics.
   bool finishMergedNodes(const std::vector<int>* merged, const std::vector<double>* mergedFactor,
-    const std::vector<int8_t>* mergedDepth, FrameStats& s);
+    const std::vector<int8_t>* mergedDepth, const std::vector<int>* candidates, FrameStats& s);
+  // The node drawn whole now (nodeDepth_) that covers `block`, or -1.
+  int drawnNodeCovering(int block) const;
+  // Flags for a perimeter recheck (nodeRecheck_) the nodes drawn whole now beside `block`,
+  // and those around `node`'s border.
+  void markNodesBeside(int block);
+  void markNodesAround(int node);
+  // The nodes whose coarse perimeters may have changed this frame: those new or at another
+  // depth (changedNodes_), and the drawn nodes beside them, beside the nodes no longer
+  // drawn whole and beside the blocks whose drawn state changed (`candidates`: the blocks
+  // that may be drawn now, null: any).
+  void markPerimetersToRecheck(const std::vector<int>* candidates);
   // Whether drawn merged node `node`'s perimeter (at this frame's depths and levels) is not
   // the one its slot was drawn with; records the new one.
   bool perimeterChanged(int node);
@@ -227,6 +238,8 @@ private:
   // was drawn with, since they change with the neighbours across.
   std::vector<int8_t> nodeDepth_;
   std::unordered_map<int, std::vector<GridPoint>> nodePerimeter_;
+  std::vector<uint8_t> nodeRecheck_; // per node: flagged by markPerimetersToRecheck
+  std::vector<int> recheckNodes_, changedNodes_;
   std::vector<GridPoint> perimeterScratch_;
   double heightScale_ = 1.0;
 

@@ -267,11 +267,4 @@ void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>&
   emitMergedTo(sink, qt, node, perimeter, qt.nodes[node].height, nullptr);
 }
 
-void emitCoarseMergedNodeGrid(const Quadtree& qt, int node, int depth, std::vector<GridTriangle>& out,
-  std::vector<GridPoint>& perimeter)
-{
-  GridSink sink(out);
-  emitMergedTo(sink, qt, node, perimeter, depth, nullptr);
-}
-
 } // namespace gmm

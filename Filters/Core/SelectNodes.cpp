@@ -419,25 +419,25 @@ void selectNodes(const Quadtree& qt, const ErrorTable& table, const Frustum* fru
       premerging.end());
     // The fan morph's tables are of children drawn with full perimeters: a merged child of
     // a node that glides keeps its full perimeter.
-    std::vector<int>& full = ns.fullPerimeter;
-    full.clear();
-    for (const FanPremerge& p : premerging)
+    if (!premerging.empty())
     {
-      const QuadtreeNode& n = qt.nodes[p.node];
-      for (int k = n.firstChild; k < n.firstChild + n.childCount; ++k)
+      ns.fullPerimeter.resize(qt.nodes.size(), 0);
+      for (const FanPremerge& p : premerging)
       {
-        if (ns.merged[k])
+        const QuadtreeNode& n = qt.nodes[p.node];
+        std::fill(ns.fullPerimeter.begin() + n.firstChild, ns.fullPerimeter.begin() + n.firstChild + n.childCount, 1);
+      }
+      for (std::size_t k = 0; k < out.merged.size(); ++k)
+      {
+        if (ns.fullPerimeter[out.merged[k]])
         {
-          full.push_back(k);
+          out.mergedDepth[k] = kFullPerimeter;
         }
       }
-    }
-    std::sort(full.begin(), full.end());
-    for (std::size_t k = 0; !full.empty() && k < out.merged.size(); ++k)
-    {
-      if (std::binary_search(full.begin(), full.end(), out.merged[k]))
+      for (const FanPremerge& p : premerging)
       {
-        out.mergedDepth[k] = kFullPerimeter;
+        const QuadtreeNode& n = qt.nodes[p.node];
+        std::fill(ns.fullPerimeter.begin() + n.firstChild, ns.fullPerimeter.begin() + n.firstChild + n.childCount, 0);
       }
     }
   }

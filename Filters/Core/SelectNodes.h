@@ -56,7 +56,7 @@ struct NodeScratch
   std::vector<uint8_t> recheck;
   std::vector<int> marked;
   std::vector<int> recheckList;
-  std::vector<int> fullPerimeter; // merged children of nodes whose corners glide (sorted)
+  std::vector<uint8_t> fullPerimeter; // per node: a child of a node whose corners glide (0 between frames)
 };
 
 // While it lives, the selections in `scratch` with `projector` reuse the factors they

@@ -167,8 +167,9 @@ void emitHoleCellsGrid(const HoleCells& cells, std::vector<GridTriangle>& out, E
 // so merging them, or splitting the node back into them, changes nothing drawn. A block
 // beside it draws that side with its corners only (the edge at the block's top level), and
 // a merged neighbour has the same points along the shared line (band boundaries are
-// global), so no crack or T-junction can appear. The fan does not depend on the
-// neighbours' levels: its error is one number per node (ErrorTable).
+// global), so no crack or T-junction can appear. That full perimeter does not depend on the
+// neighbours' levels: its error is one number per node (ErrorTable::mergedError); a coarse
+// one (below) does, and its table bounds it whatever they add.
 // Blocks below a merged node carry kCoveredLevel in the level list.
 constexpr int8_t kCoveredLevel = -2;
 
@@ -231,9 +232,6 @@ void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::ve
 void emitMergedNode(const Heightfield& hf, const Quadtree& qt, int node, std::vector<uint32_t>& out,
   EmitScratch& scratch, const PerimeterContext* across = nullptr);
 void emitMergedNodeGrid(const Quadtree& qt, int node, std::vector<GridTriangle>& out);
-// The fan of `node` at perimeter depth `depth` with no neighbour's points (the tables').
-void emitCoarseMergedNodeGrid(const Quadtree& qt, int node, int depth, std::vector<GridTriangle>& out,
-  std::vector<GridPoint>& perimeter);
 
 // Whether `block`, at a one-quad level (Levels.h) with `config`, is drawn as one cell over
 // every sample of its sides at full resolution instead of two triangles, with `fine`
