@@ -15,23 +15,7 @@ namespace gmm
 
 bool perimeterCoarsens(const Quadtree& qt, int node)
 {
-  if (!mergeableNode(qt, node) || !mergedErrorIsExact(qt, node))
-  {
-    return false;
-  }
-  const QuadtreeNode& n = qt.nodes[node];
-  for (int r = n.rowBegin; r < n.rowEnd; ++r)
-  {
-    for (int c = n.colBegin; c < n.colEnd; ++c)
-    {
-      const int b = qt.blockIndex(c, r);
-      if (qt.blockHasNodata[b] || qt.anySideAtFullResolution(b))
-      {
-        return false;
-      }
-    }
-  }
-  return true;
+  return mergeableNode(qt, node) && mergedErrorIsExact(qt, node) && qt.nodeClearOfNodata(node);
 }
 
 void perimeterOffsets(const Quadtree& qt, std::vector<uint32_t>& first)

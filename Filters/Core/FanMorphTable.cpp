@@ -17,23 +17,8 @@ namespace gmm
 
 bool fanMorphable(const Quadtree& qt, int node)
 {
-  if (!mergeableNode(qt, node) || !mergedErrorIsExact(qt, node) || mergeNestsInBlocks(qt, node))
-  {
-    return false;
-  }
-  const QuadtreeNode& n = qt.nodes[node];
-  for (int r = n.rowBegin; r < n.rowEnd; ++r)
-  {
-    for (int c = n.colBegin; c < n.colEnd; ++c)
-    {
-      const int b = qt.blockIndex(c, r);
-      if (qt.blockHasNodata[b] || qt.anySideAtFullResolution(b))
-      {
-        return false;
-      }
-    }
-  }
-  return true;
+  return mergeableNode(qt, node) && mergedErrorIsExact(qt, node) && !mergeNestsInBlocks(qt, node) &&
+    qt.nodeClearOfNodata(node);
 }
 
 double fanSurfaceHeight(const Heightfield& hf, const Quadtree& qt, int node, int i, int j)

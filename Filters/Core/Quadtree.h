@@ -148,6 +148,24 @@ struct Quadtree
     return !nodataBits.empty() &&
       (blockHasNodata[block] || (neighbour >= 0 && blockHasNodata[neighbour]));
   }
+  // Whether no block below `node` holds nodata or has a side at full resolution
+  // (anySideAtFullResolution): its fan's perimeter is then block corners only.
+  bool nodeClearOfNodata(int node) const
+  {
+    const QuadtreeNode& n = nodes[node];
+    for (int r = n.rowBegin; r < n.rowEnd; ++r)
+    {
+      for (int c = n.colBegin; c < n.colEnd; ++c)
+      {
+        const int b = blockIndex(c, r);
+        if (blockHasNodata[b] || anySideAtFullResolution(b))
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
   // Whether `block`, with nodata, at ring level `level` > 0 holds none in its level's border
   // row of cells along `side` (lines 0 to 2^m in from it). That side is then drawn as a
   // side strip that follows the neighbour's level, to the vertices of the block's cells

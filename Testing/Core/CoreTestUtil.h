@@ -150,6 +150,26 @@ inline void randomEngineFrame(gmm::Engine& e, Rng& rng)
 // each path that spans at least 2 x 2 blocks is drawn whole, a fan with one triangle per
 // block side on its border, 2 (cols + rows); a block not below one is a single quad, two
 // triangles.
+// Calls set(i, j, value) at every grid sample that triangle (a, b, c) covers, edges
+// included, with the value interpolated from its vertices' heights: a plain per-sample
+// test, independent of the engine's rasterisers.
+template <typename Set>
+void paintTriangle(int ai, int aj, int bi, int bj, int ci, int cj, double ha, double hb, double hc, Set set)
+{
+  const double area = double(bi - ai) * (cj - aj) - double(bj - aj) * (ci - ai);
+  if (area == 0.0)
+    return;
+  for (int j = std::min({ aj, bj, cj }); j <= std::max({ aj, bj, cj }); ++j)
+    for (int i = std::min({ ai, bi, ci }); i <= std::max({ ai, bi, ci }); ++i)
+    {
+      const double wa = (double(bi - i) * (cj - j) - double(bj - j) * (ci - i)) / area;
+      const double wb = (double(ci - i) * (aj - j) - double(cj - j) * (ai - i)) / area;
+      const double wc = 1.0 - wa - wb;
+      if (wa >= -1e-12 && wb >= -1e-12 && wc >= -1e-12)
+        set(i, j, wa * ha + wb * hb + wc * hc);
+    }
+}
+
 // Per quadtree node, the perimeter depth of each node the engine drew whole in its last
 // frame, -1 for the others (PerimeterContext's depths).
 inline std::vector<int8_t> drawnNodeDepths(const gmm::Engine& e)

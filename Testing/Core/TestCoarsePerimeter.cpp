@@ -84,22 +84,9 @@ std::vector<double> paint(const gmm::Heightfield& hf, const std::vector<Triangle
   const int width = i1 - i0 + 1;
   std::vector<double> out(static_cast<std::size_t>(width) * (j1 - j0 + 1), std::nan(""));
   for (const Triangle& t : tris)
-  {
-    const double ax = t[0].i, ay = t[0].j, bx = t[1].i, by = t[1].j, cx = t[2].i, cy = t[2].j;
-    const double area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-    if (area == 0.0)
-      continue;
-    const double ha = hf.height(t[0].i, t[0].j), hb = hf.height(t[1].i, t[1].j), hc = hf.height(t[2].i, t[2].j);
-    for (int j = std::min({ t[0].j, t[1].j, t[2].j }); j <= std::max({ t[0].j, t[1].j, t[2].j }); ++j)
-      for (int i = std::min({ t[0].i, t[1].i, t[2].i }); i <= std::max({ t[0].i, t[1].i, t[2].i }); ++i)
-      {
-        const double wa = ((bx - i) * (cy - j) - (by - j) * (cx - i)) / area;
-        const double wb = ((cx - i) * (ay - j) - (cy - j) * (ax - i)) / area;
-        const double wc = 1.0 - wa - wb;
-        if (wa >= -1e-12 && wb >= -1e-12 && wc >= -1e-12)
-          out[static_cast<std::size_t>(j - j0) * width + (i - i0)] = wa * ha + wb * hb + wc * hc;
-      }
-  }
+    paintTriangle(t[0].i, t[0].j, t[1].i, t[1].j, t[2].i, t[2].j, hf.height(t[0].i, t[0].j),
+      hf.height(t[1].i, t[1].j), hf.height(t[2].i, t[2].j),
+      [&](int i, int j, double h) { out[static_cast<std::size_t>(j - j0) * width + (i - i0)] = h; });
   return out;
 }
 

@@ -52,20 +52,8 @@ std::vector<std::array<Corner, 3>> fanOf(const gmm::Quadtree& qt, int node)
 template <typename HeightAt>
 void paint(const std::array<Corner, 3>& t, HeightAt heightAt, int i0, int j0, int width, std::vector<double>& out)
 {
-  const double ax = t[0].i, ay = t[0].j, bx = t[1].i, by = t[1].j, cx = t[2].i, cy = t[2].j;
-  const double area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-  if (area == 0.0)
-    return;
-  const double ha = heightAt(t[0]), hb = heightAt(t[1]), hc = heightAt(t[2]);
-  for (int j = std::min({ t[0].j, t[1].j, t[2].j }); j <= std::max({ t[0].j, t[1].j, t[2].j }); ++j)
-    for (int i = std::min({ t[0].i, t[1].i, t[2].i }); i <= std::max({ t[0].i, t[1].i, t[2].i }); ++i)
-    {
-      const double wa = ((bx - i) * (cy - j) - (by - j) * (cx - i)) / area;
-      const double wb = ((cx - i) * (ay - j) - (cy - j) * (ax - i)) / area;
-      const double wc = 1.0 - wa - wb;
-      if (wa >= -1e-12 && wb >= -1e-12 && wc >= -1e-12)
-        out[static_cast<std::size_t>(j - j0) * width + (i - i0)] = wa * ha + wb * hb + wc * hc;
-    }
+  gmmtest::paintTriangle(t[0].i, t[0].j, t[1].i, t[1].j, t[2].i, t[2].j, heightAt(t[0]), heightAt(t[1]),
+    heightAt(t[2]), [&](int i, int j, double h) { out[static_cast<std::size_t>(j - j0) * width + (i - i0)] = h; });
 }
 
 // The node's children at their coarsest: a child of at least 2 x 2 blocks as its fan, any
