@@ -255,28 +255,7 @@ void Engine::queueNodesBeside(int block)
 int Engine::drawnNodeOver(int block) const
 {
   const Quadtree& qt = terrain_->qt;
-  const int c = block % qt.blockCols, r = block / qt.blockCols;
-  int n = 0;
-  while (!nodeDrawn_[n])
-  {
-    const QuadtreeNode& node = qt.nodes[n];
-    int next = -1;
-    for (int k = node.firstChild; k < node.firstChild + node.childCount; ++k)
-    {
-      const QuadtreeNode& child = qt.nodes[k];
-      if (c >= child.colBegin && c < child.colEnd && r >= child.rowBegin && r < child.rowEnd)
-      {
-        next = k;
-        break;
-      }
-    }
-    if (next < 0)
-    {
-      return -1; // a leaf: the block is not below a drawn node
-    }
-    n = next;
-  }
-  return n;
+  return qt.firstNodeOver(block % qt.blockCols, block / qt.blockCols, [this](int n) { return nodeDrawn_[n] != 0; });
 }
 
 bool Engine::perimeterChanged(int node)
@@ -304,24 +283,7 @@ bool Engine::perimeterChanged(int node)
 int Engine::drawnNodeCovering(int block) const
 {
   const Quadtree& qt = terrain_->qt;
-  const int c = block % qt.blockCols, r = block / qt.blockCols;
-  int at = 0;
-  while (nodeDepth_[at] < 0)
-  {
-    const QuadtreeNode& node = qt.nodes[at];
-    int next = -1;
-    for (int k = node.firstChild; k < node.firstChild + node.childCount && next < 0; ++k)
-    {
-      const QuadtreeNode& child = qt.nodes[k];
-      next = c >= child.colBegin && c < child.colEnd && r >= child.rowBegin && r < child.rowEnd ? k : -1;
-    }
-    if (next < 0)
-    {
-      return -1;
-    }
-    at = next;
-  }
-  return at;
+  return qt.firstNodeOver(block % qt.blockCols, block / qt.blockCols, [this](int n) { return nodeDepth_[n] >= 0; });
 }
 
 void Engine::markNodesBeside(int block)
@@ -402,9 +364,9 @@ bool Engine::finishMergedNodes(const std::vector<int>* merged, const std::vector
   bool changed = false;
   static const std::vector<int> none;
   const std::vector<int>& now = merged ? *merged : none;
-  for (std::size_t k = 0; k < now.size(); ++k)
+  for (int n : now)
   {
-    nodeNow_[now[k]] = 1;
+    nodeNow_[n] = 1;
   }
   for (int n : drawnMerged_)
   {

@@ -165,20 +165,10 @@ private:
     {
       return last_;
     }
-    int at = 0;
-    while (ctx_->depth[at] < 0)
+    const int at = qt_.firstNodeOver(col, row, [this](int n) { return ctx_->depth[n] >= 0; });
+    if (at < 0)
     {
-      const QuadtreeNode& m = qt_.nodes[at];
-      int next = -1;
-      for (int k = m.firstChild; k < m.firstChild + m.childCount && next < 0; ++k)
-      {
-        next = holds(qt_.nodes[k]) ? k : -1;
-      }
-      if (next < 0)
-      {
-        return nullptr;
-      }
-      at = next;
+      return nullptr;
     }
     last_ = &qt_.nodes[at];
     return last_;

@@ -84,6 +84,29 @@ struct Quadtree
 
   int blockCount() const { return blockCols * blockRows; }
   int blockIndex(int col, int row) const { return row * blockCols + col; }
+  // The first node on the path from the root down to block (col, row) for which
+  // `flagged(node)` holds, or -1 when none does down to the leaf.
+  template <typename Flagged>
+  int firstNodeOver(int col, int row, Flagged flagged) const
+  {
+    int at = 0;
+    while (!flagged(at))
+    {
+      const QuadtreeNode& n = nodes[at];
+      int next = -1;
+      for (int k = n.firstChild; k < n.firstChild + n.childCount && next < 0; ++k)
+      {
+        const QuadtreeNode& child = nodes[k];
+        next = col >= child.colBegin && col < child.colEnd && row >= child.rowBegin && row < child.rowEnd ? k : -1;
+      }
+      if (next < 0)
+      {
+        return -1;
+      }
+      at = next;
+    }
+    return at;
+  }
   int blockWidth(int block) const { return blockWidths[block]; } // in quads
   int blockHeight(int block) const { return blockHeights[block]; }
   int blockTopLevel(int block) const { return blockTopLevels[block]; }
