@@ -20,8 +20,8 @@
 #pragma once
 
 #include "ErrorTable.h"
-#include "Heightfield.h"
 #include "GridTypes.h"
+#include "Heightfield.h"
 #include "Quadtree.h"
 
 #include <array>
@@ -50,7 +50,6 @@ bool perimeterCoarsens(const Quadtree& qt, int node);
 // start at first[n]; first has nodes + 1 entries. Derived from the quadtree, not stored.
 void perimeterOffsets(const Quadtree& qt, std::vector<uint32_t>& first);
 
-// Buffers coarsePerimeterErrors reuses from node to node.
 // A segment of a node's side in one of its partitions: its ends and their heights (less the
 // centre's), the fan triangle's orientation and 1 / |its doubled area|, and where along the
 // side its two halves part.
@@ -60,6 +59,8 @@ struct PerimeterSegment
   double ha = 0.0, hb = 0.0, inv = 0.0, split = 0.0;
   int64_t sign = 1;
 };
+
+// Buffers coarsePerimeterErrors reuses from node to node.
 struct CoarsePerimeterScratch
 {
   std::vector<double> worst, depthHeights, borderHeights, exitX;

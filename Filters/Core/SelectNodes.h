@@ -10,6 +10,7 @@
 // instead of a jump over several levels; a node that merges by the fan morph (FanMorph.h)
 // merges at the end of its own path, its children gliding onto its fan before (listed in
 // the ramp's `premerging` once the levels are final and its children at their coarsest).
+// Each node drawn whole takes the coarsest perimeter depth its tables allow (CoarsePerimeter.h).
 // A block beside a merged node draws that side with its corners only; when that strip does
 // not fit the block's budget, the merged node is split (its children are walked in turn)
 // and the blocks are re-checked, until every drawn block and every merged node fits. Each
