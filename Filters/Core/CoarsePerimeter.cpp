@@ -155,10 +155,7 @@ void coarsePerimeterErrors(const Heightfield& hf, const Quadtree& qt, int node, 
       const int dx = i - centre.i;
       if (dx == 0 && dy == 0)
       {
-        fullError = std::max(fullError, std::abs(sample));
-        for (int d = 0; d < depths; ++d)
-          e[d] = std::max(e[d], std::abs(sample));
-        continue;
+        continue; // the apex of every fan, at its own height
       }
       const double sx = exitX[i - i0];
       const bool vertical = sx <= sy; // leaves through the east or west side

@@ -241,7 +241,7 @@ void Engine::queueNodesBeside(int block)
     const int nb = neighbour[side];
     if (nb >= 0 && levels_[nb] == kCoveredLevel)
     {
-      const int n = drawnNodeOver(nb);
+      const int n = drawnNodeCovering(nb);
       if (n >= 0 && !nodeRedrawn_[n])
       {
         nodeRedrawn_[n] = 1;
@@ -250,12 +250,6 @@ void Engine::queueNodesBeside(int block)
       }
     }
   }
-}
-
-int Engine::drawnNodeOver(int block) const
-{
-  const Quadtree& qt = terrain_->qt;
-  return qt.firstNodeOver(block % qt.blockCols, block / qt.blockCols, [this](int n) { return nodeDrawn_[n] != 0; });
 }
 
 bool Engine::perimeterChanged(int node)
@@ -286,6 +280,15 @@ int Engine::drawnNodeCovering(int block) const
   return qt.firstNodeOver(block % qt.blockCols, block / qt.blockCols, [this](int n) { return nodeDepth_[n] >= 0; });
 }
 
+void Engine::flagPerimeterRecheck(int node)
+{
+  if (node >= 0 && !nodeRecheck_[node])
+  {
+    nodeRecheck_[node] = 1;
+    recheckNodes_.push_back(node);
+  }
+}
+
 void Engine::markNodesBeside(int block)
 {
   const Quadtree& qt = terrain_->qt;
@@ -293,12 +296,7 @@ void Engine::markNodesBeside(int block)
   {
     if (nb >= 0 && levels_[nb] == kCoveredLevel)
     {
-      const int n = drawnNodeCovering(nb);
-      if (n >= 0 && !nodeRecheck_[n])
-      {
-        nodeRecheck_[n] = 1;
-        recheckNodes_.push_back(n);
-      }
+      flagPerimeterRecheck(drawnNodeCovering(nb));
     }
   }
 }
@@ -329,11 +327,7 @@ void Engine::markNodesAround(int node)
       }
     }
     last = drawnNodeCovering(b);
-    if (last >= 0 && !nodeRecheck_[last])
-    {
-      nodeRecheck_[last] = 1;
-      recheckNodes_.push_back(last);
-    }
+    flagPerimeterRecheck(last);
   };
   for (int c = n.colBegin; c < n.colEnd; ++c)
   {
@@ -433,11 +427,7 @@ void Engine::markPerimetersToRecheck(const std::vector<int>* candidates)
   // nodes drawn whole there (coarsePerimeter): only the nodes beside a change look again.
   for (int n : changedNodes_)
   {
-    if (!nodeRecheck_[n])
-    {
-      nodeRecheck_[n] = 1;
-      recheckNodes_.push_back(n);
-    }
+    flagPerimeterRecheck(n);
     markNodesAround(n);
   }
   for (int n : drawnMerged_)

@@ -169,8 +169,6 @@ private:
     const std::vector<double>* mergedFactor = nullptr, const std::vector<int8_t>* mergedDepth = nullptr);
   // Draws merged node `node`'s slot (drawMergedArea) at this frame's levels.
   void drawNodeSlot(int node, FrameStats& s);
-  // The merged node in the arena this frame that covers `block`, or -1.
-  int drawnNodeOver(int block) const;
   // Queues for drawing again the merged nodes west and north of `block`, whose connects
   // hold its strips on those sides, when `block`'s slot was drawn again.
   void queueNodesBeside(int block);
@@ -179,6 +177,8 @@ private:
     const std::vector<int8_t>* mergedDepth, const std::vector<int>* candidates, FrameStats& s);
   // The node drawn whole now (nodeDepth_) that covers `block`, or -1.
   int drawnNodeCovering(int block) const;
+  // Flags drawn node `node` (-1: none) for a perimeter recheck, once.
+  void flagPerimeterRecheck(int node);
   // Flags for a perimeter recheck (nodeRecheck_) the nodes drawn whole now beside `block`,
   // and those around `node`'s border.
   void markNodesBeside(int block);

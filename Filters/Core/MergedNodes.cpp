@@ -101,11 +101,10 @@ bool partitionBoundary(int b0, int b1, int depth, int c)
 
 namespace
 {
-// The points a node's perimeter passes through along one side: band boundaries `first`
-// to `last` of the line (`cols`: block columns, else rows), the elements across it in
-// block row or column `across` (-1 or past the DEM: none). Decides, for a boundary
-// strictly inside the side, whether the node's own partition or a drawn element across
-// needs it.
+// The points a node's perimeter passes through along one side: its band boundaries
+// (`cols`: block columns, else rows), the elements across it in block row or column
+// `across` (-1 or past the DEM: none). Decides, for a boundary strictly inside the side,
+// whether the node's own partition or a drawn element across needs it.
 class SidePoints
 {
 public:
